@@ -1,0 +1,487 @@
+// plugin.hpp — the optional C++ SDK over vobench_plugin.h.
+//
+// A plugin author writes one class and one macro:
+//
+//     class MyVo : public vobench::sdk::Odometry {
+//     public:
+//         static vobench::sdk::PluginInfo info();          // name, version, parameter table ...
+//         void start(const vobench_camera&, const vobench::sdk::Params&, uint64_t seed) override;
+//         vobench_tracking_status process(const vobench_frame&, vobench_pose&) override;
+//     };
+//     VOBENCH_ODOMETRY_PLUGIN(MyVo)
+//
+// (VOBENCH_DATASET_PLUGIN likewise for a vobench::sdk::Dataset.) The macro defines the C entry symbol,
+// builds the static descriptor from info() once, and wraps every call so that no exception crosses the
+// C boundary: vobench::sdk::Error carries its status, std::bad_alloc becomes VOBENCH_NO_MEMORY, any
+// other exception VOBENCH_ERROR, each with its message in last_error().
+//
+// Header-only, C++17, no dependency beyond the standard library: plugins never link the harness.
+#ifndef VOBENCH_PLUGIN_HPP
+#define VOBENCH_PLUGIN_HPP
+
+#include <vobench/vobench_plugin.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace vobench::sdk {
+
+// ----- errors ------------------------------------------------------------------------------------
+
+// Throw this from plugin code to return a specific status with a message.
+class Error : public std::runtime_error {
+public:
+    Error(vobench_status status, const std::string& message) : std::runtime_error(message), status_(status) {}
+    vobench_status status() const noexcept { return status_; }
+
+private:
+    vobench_status status_;
+};
+
+// ----- parameter parsing (shared with the host, which validates configs with the same rules) -------
+
+// Each returns false when `text` is not a complete, valid value of the type.
+inline bool parse_bool(const std::string& text, bool& out) {
+    if (text == "true" || text == "1" || text == "on" || text == "yes") { out = true; return true; }
+    if (text == "false" || text == "0" || text == "off" || text == "no") { out = false; return true; }
+    return false;
+}
+
+inline bool parse_int(const std::string& text, long long& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    errno = 0;
+    out = std::strtoll(text.c_str(), &end, 10);
+    return errno == 0 && end == text.c_str() + text.size();
+}
+
+inline bool parse_double(const std::string& text, double& out) {
+    if (text.empty()) return false;
+    char* end = nullptr;
+    errno = 0;
+    out = std::strtod(text.c_str(), &end);
+    return errno == 0 && end == text.c_str() + text.size() && std::isfinite(out);
+}
+
+// True when `word` is one of the '|'-separated `choices`.
+inline bool is_choice(const std::string& word, const std::string& choices) {
+    std::size_t begin = 0;
+    while (begin <= choices.size()) {
+        std::size_t end = choices.find('|', begin);
+        if (end == std::string::npos) end = choices.size();
+        if (choices.compare(begin, end - begin, word) == 0 && end - begin == word.size()) return true;
+        begin = end + 1;
+    }
+    return false;
+}
+
+// One parameter of the table a plugin publishes.
+struct Param {
+    std::string name;
+    vobench_param_type type = VOBENCH_PARAM_STRING;
+    std::string default_value;
+    double min_value = 0.0;
+    double max_value = 0.0;
+    std::string choices;  // ENUM only: "a|b|c"
+    std::string help;
+};
+
+// Checks `text` against one parameter's type and range; returns an empty string when valid, or the
+// reason it is not.
+inline std::string check_param_value(const Param& p, const std::string& text) {
+    switch (p.type) {
+    case VOBENCH_PARAM_BOOL: {
+        bool b;
+        return parse_bool(text, b) ? "" : "'" + text + "' is not a boolean (true/false)";
+    }
+    case VOBENCH_PARAM_INT: {
+        long long v;
+        if (!parse_int(text, v)) return "'" + text + "' is not an integer";
+        if (double(v) < p.min_value || double(v) > p.max_value)
+            return "'" + text + "' is outside [" + std::to_string((long long)p.min_value) + ", " +
+                   std::to_string((long long)p.max_value) + "]";
+        return "";
+    }
+    case VOBENCH_PARAM_DOUBLE: {
+        double v;
+        if (!parse_double(text, v)) return "'" + text + "' is not a finite number";
+        if (v < p.min_value || v > p.max_value)
+            return "'" + text + "' is outside [" + std::to_string(p.min_value) + ", " + std::to_string(p.max_value) + "]";
+        return "";
+    }
+    case VOBENCH_PARAM_ENUM:
+        return is_choice(text, p.choices) ? "" : "'" + text + "' is not one of " + p.choices;
+    case VOBENCH_PARAM_STRING:
+        return "";
+    default:
+        return "unknown parameter type";
+    }
+}
+
+// What info() returns: the static description of a plugin.
+struct PluginInfo {
+    std::string name;
+    std::string version;
+    std::string description;
+    std::string license;
+    std::string url;
+    std::vector<Param> params;
+};
+
+// Parameter values as given, completed with the table's defaults. Getters throw Error on a name that
+// is not in the table or a value of the wrong type, so a plugin's own mistakes surface as messages.
+class Params {
+public:
+    Params() = default;
+    Params(const std::vector<Param>& table, const vobench_params* given) : table_(table) {
+        for (const Param& p : table) values_[p.name] = p.default_value;
+        if (given == nullptr) return;
+        for (uint32_t i = 0; i < given->count; ++i) {
+            const std::string key = given->keys[i] ? given->keys[i] : "";
+            const std::string value = given->values[i] ? given->values[i] : "";
+            const Param* p = find(key);
+            if (p == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "unknown parameter '" + key + "'");
+            const std::string why = check_param_value(*p, value);
+            if (!why.empty()) throw Error(VOBENCH_INVALID_ARGUMENT, "parameter '" + key + "': " + why);
+            values_[key] = value;
+        }
+    }
+
+    const std::string& get_string(const std::string& name) const {
+        auto it = values_.find(name);
+        if (it == values_.end()) throw Error(VOBENCH_ERROR, "plugin asked for undeclared parameter '" + name + "'");
+        return it->second;
+    }
+    long long get_int(const std::string& name) const {
+        long long v;
+        if (!parse_int(get_string(name), v)) throw Error(VOBENCH_INVALID_ARGUMENT, "parameter '" + name + "' is not an integer");
+        return v;
+    }
+    double get_double(const std::string& name) const {
+        double v;
+        if (!parse_double(get_string(name), v)) throw Error(VOBENCH_INVALID_ARGUMENT, "parameter '" + name + "' is not a number");
+        return v;
+    }
+    bool get_bool(const std::string& name) const {
+        bool v;
+        if (!parse_bool(get_string(name), v)) throw Error(VOBENCH_INVALID_ARGUMENT, "parameter '" + name + "' is not a boolean");
+        return v;
+    }
+    const std::map<std::string, std::string>& all() const { return values_; }
+
+private:
+    const Param* find(const std::string& name) const {
+        for (const Param& p : table_)
+            if (p.name == name) return &p;
+        return nullptr;
+    }
+    std::vector<Param> table_;
+    std::map<std::string, std::string> values_;
+};
+
+// ----- host services -----------------------------------------------------------------------------
+
+class Host {
+public:
+    explicit Host(const vobench_host_services* services) : services_(services) {}
+
+    void log(vobench_log_level level, const std::string& message) const {
+        if (has(&vobench_host_services::log)) services_->log(services_->context, level, message.c_str());
+    }
+    void info(const std::string& message) const { log(VOBENCH_LOG_INFO, message); }
+    void warn(const std::string& message) const { log(VOBENCH_LOG_WARNING, message); }
+    void stage_begin(const char* stage) const {
+        if (has(&vobench_host_services::stage_begin)) services_->stage_begin(services_->context, stage);
+    }
+    void stage_end(const char* stage) const {
+        if (has(&vobench_host_services::stage_end)) services_->stage_end(services_->context, stage);
+    }
+    void counter(const char* name, double value) const {
+        if (has(&vobench_host_services::counter)) services_->counter(services_->context, name, value);
+    }
+    bool cancelled() const {
+        return has(&vobench_host_services::is_cancelled) && services_->is_cancelled(services_->context) != 0;
+    }
+
+    // Times a stage for the lifetime of the object: { Host::Stage s(host(), "detection"); ... }
+    class Stage {
+    public:
+        Stage(const Host& host, const char* name) : host_(host), name_(name) { host_.stage_begin(name_); }
+        ~Stage() { host_.stage_end(name_); }
+        Stage(const Stage&) = delete;
+        Stage& operator=(const Stage&) = delete;
+
+    private:
+        const Host& host_;
+        const char* name_;
+    };
+
+private:
+    // A function is usable when the host's struct covers it and set it.
+    template <typename F>
+    bool has(F vobench_host_services::*member) const {
+        if (services_ == nullptr) return false;
+        const std::size_t offset = reinterpret_cast<std::size_t>(
+            &(reinterpret_cast<const vobench_host_services*>(0)->*member));
+        return services_->struct_size >= offset + sizeof(F) && services_->*member != nullptr;
+    }
+    const vobench_host_services* services_;
+};
+
+// ----- the classes plugin authors derive from ----------------------------------------------------
+
+class Odometry {
+public:
+    virtual ~Odometry() = default;
+    // Called once before the first frame. `camera` is the colour camera of the frames to come.
+    virtual void start(const vobench_camera& camera, const Params& params, uint64_t seed) = 0;
+    // Fill `pose` (camera-to-world) for this frame and return the tracking status. Throw on error.
+    virtual vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) = 0;
+    // Forget the state (default: not supported).
+    virtual void reset() { throw Error(VOBENCH_UNSUPPORTED, "this plugin cannot reset"); }
+
+    const Host& host() const { return *host_; }
+    void attach_host(const Host* host) { host_ = host; }
+
+private:
+    const Host* host_ = nullptr;
+};
+
+class Dataset {
+public:
+    virtual ~Dataset() = default;
+    virtual void open(const std::string& path, const Params& options) = 0;
+    // The returned reference must stay valid until destruction.
+    virtual const vobench_sequence_info& describe() = 0;
+    // The returned frame must stay valid until the next read_frame() or destruction.
+    virtual const vobench_frame& read_frame(uint64_t index) = 0;
+
+    const Host& host() const { return *host_; }
+    void attach_host(const Host* host) { host_ = host; }
+
+private:
+    const Host* host_ = nullptr;
+};
+
+namespace detail {
+
+// Runs `body`, turning any exception into a status and a stored message.
+template <typename Body>
+vobench_status guarded(std::string& error, Body&& body) noexcept {
+    try {
+        error.clear();
+        body();
+        return VOBENCH_OK;
+    } catch (const Error& e) {
+        error = e.what();
+        return e.status();
+    } catch (const std::bad_alloc&) {
+        error = "out of memory";
+        return VOBENCH_NO_MEMORY;
+    } catch (const std::exception& e) {
+        error = e.what();
+        return VOBENCH_ERROR;
+    } catch (...) {
+        error = "unknown exception";
+        return VOBENCH_ERROR;
+    }
+}
+
+// Owns the strings and tables a descriptor points to; built once per plugin class.
+struct DescriptorStore {
+    PluginInfo info;
+    std::vector<vobench_param_desc> params;
+    vobench_plugin_descriptor descriptor{};
+
+    DescriptorStore(PluginInfo i, vobench_plugin_kind kind) : info(std::move(i)) {
+        for (const Param& p : info.params) {
+            vobench_param_desc d{};
+            d.struct_size = sizeof(vobench_param_desc);
+            d.name = p.name.c_str();
+            d.type = p.type;
+            d.default_value = p.default_value.c_str();
+            d.min_value = p.min_value;
+            d.max_value = p.max_value;
+            d.choices = p.choices.empty() ? nullptr : p.choices.c_str();
+            d.help = p.help.c_str();
+            params.push_back(d);
+        }
+        descriptor.struct_size = sizeof(vobench_plugin_descriptor);
+        descriptor.abi_version = VOBENCH_ABI_VERSION;
+        descriptor.api_version = VOBENCH_API_VERSION;
+        descriptor.kind = kind;
+        descriptor.name = info.name.c_str();
+        descriptor.version = info.version.c_str();
+        descriptor.description = info.description.c_str();
+        descriptor.license = info.license.c_str();
+        descriptor.url = info.url.empty() ? nullptr : info.url.c_str();
+        descriptor.param_count = static_cast<uint32_t>(params.size());
+        descriptor.params = params.empty() ? nullptr : params.data();
+    }
+};
+
+template <typename T>
+struct Instance {
+    explicit Instance(const vobench_host_services* services) : host(services) {}
+    Host host;
+    std::unique_ptr<T> impl;
+    std::string error;
+};
+
+template <typename Impl>
+struct OdometryBridge {
+    using Self = Instance<Impl>;
+    static Self* self(vobench_odometry* h) { return reinterpret_cast<Self*>(h); }
+
+    static vobench_odometry* create(const vobench_host_services* host) noexcept {
+        try {
+            auto* s = new Self(host);
+            s->impl = std::make_unique<Impl>();
+            s->impl->attach_host(&s->host);
+            return reinterpret_cast<vobench_odometry*>(s);
+        } catch (...) {
+            return nullptr;
+        }
+    }
+    static vobench_status start(vobench_odometry* h, const vobench_odometry_config* config) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] {
+            if (config == nullptr || config->camera == nullptr)
+                throw Error(VOBENCH_INVALID_ARGUMENT, "start() needs a configuration with a camera");
+            const Params params(store().info.params, config->params);
+            s->impl->start(*config->camera, params, config->seed);
+        });
+    }
+    static vobench_status process(vobench_odometry* h, const vobench_frame* frame, vobench_pose* pose,
+                                  vobench_tracking_status* status) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] {
+            if (frame == nullptr || pose == nullptr || status == nullptr)
+                throw Error(VOBENCH_INVALID_ARGUMENT, "process() needs a frame, a pose and a status");
+            vobench_pose out{};
+            out.struct_size = sizeof(vobench_pose);
+            out.timestamp = frame->timestamp;
+            out.qw = 1.0;
+            *status = s->impl->process(*frame, out);
+            // Write back only what the host's struct covers.
+            const uint32_t size = pose->struct_size < sizeof(out) ? pose->struct_size : uint32_t(sizeof(out));
+            const uint32_t host_size = pose->struct_size;
+            std::memcpy(static_cast<void*>(pose), &out, size);
+            pose->struct_size = host_size;
+        });
+    }
+    static vobench_status reset(vobench_odometry* h) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] { s->impl->reset(); });
+    }
+    static const char* last_error(vobench_odometry* h) noexcept { return self(h)->error.c_str(); }
+    static void destroy(vobench_odometry* h) noexcept { delete self(h); }
+
+    static const DescriptorStore& store() {
+        static const DescriptorStore s(Impl::info(), VOBENCH_KIND_ODOMETRY);
+        return s;
+    }
+    static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
+        if (abi != VOBENCH_ABI_VERSION || api < 1) return nullptr;
+        try {  // info() is plugin code: an exception here must not escape either
+        static const vobench_odometry_api table = {sizeof(vobench_odometry_api), &create, &start, &process,
+                                                   &reset, &last_error, &destroy};
+        static const vobench_plugin_descriptor descriptor = [] {
+            vobench_plugin_descriptor d = store().descriptor;
+            d.odometry = &table;
+            return d;
+        }();
+        return &descriptor;
+        } catch (...) {
+            return nullptr;
+        }
+    }
+};
+
+template <typename Impl>
+struct DatasetBridge {
+    using Self = Instance<Impl>;
+    static Self* self(vobench_dataset* h) { return reinterpret_cast<Self*>(h); }
+
+    static vobench_dataset* create(const vobench_host_services* host) noexcept {
+        try {
+            auto* s = new Self(host);
+            s->impl = std::make_unique<Impl>();
+            s->impl->attach_host(&s->host);
+            return reinterpret_cast<vobench_dataset*>(s);
+        } catch (...) {
+            return nullptr;
+        }
+    }
+    static vobench_status open(vobench_dataset* h, const char* path, const vobench_params* options) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] {
+            if (path == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "open() needs a path");
+            const Params params(store().info.params, options);
+            s->impl->open(path, params);
+        });
+    }
+    static vobench_status describe(vobench_dataset* h, const vobench_sequence_info** out) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] {
+            if (out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "describe() needs an output pointer");
+            *out = &s->impl->describe();
+        });
+    }
+    static vobench_status read_frame(vobench_dataset* h, uint64_t index, const vobench_frame** out) noexcept {
+        Self* s = self(h);
+        return guarded(s->error, [&] {
+            if (out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "read_frame() needs an output pointer");
+            *out = &s->impl->read_frame(index);
+        });
+    }
+    static const char* last_error(vobench_dataset* h) noexcept { return self(h)->error.c_str(); }
+    static void destroy(vobench_dataset* h) noexcept { delete self(h); }
+
+    static const DescriptorStore& store() {
+        static const DescriptorStore s(Impl::info(), VOBENCH_KIND_DATASET);
+        return s;
+    }
+    static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
+        if (abi != VOBENCH_ABI_VERSION || api < 1) return nullptr;
+        try {  // info() is plugin code: an exception here must not escape either
+        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &create, &open, &describe,
+                                                  &read_frame, &last_error, &destroy};
+        static const vobench_plugin_descriptor descriptor = [] {
+            vobench_plugin_descriptor d = store().descriptor;
+            d.dataset = &table;
+            return d;
+        }();
+        return &descriptor;
+        } catch (...) {
+            return nullptr;
+        }
+    }
+};
+
+}  // namespace detail
+}  // namespace vobench::sdk
+
+// Defines the plugin's entry symbol for an Odometry (resp. Dataset) subclass with a static info().
+#define VOBENCH_ODOMETRY_PLUGIN(Class)                                                             \
+    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(            \
+        uint32_t host_abi_version, uint32_t host_api_version) {                                    \
+        return ::vobench::sdk::detail::OdometryBridge<Class>::entry(host_abi_version, host_api_version); \
+    }
+
+#define VOBENCH_DATASET_PLUGIN(Class)                                                              \
+    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(            \
+        uint32_t host_abi_version, uint32_t host_api_version) {                                    \
+        return ::vobench::sdk::detail::DatasetBridge<Class>::entry(host_abi_version, host_api_version); \
+    }
+
+#endif  // VOBENCH_PLUGIN_HPP
