@@ -1,0 +1,336 @@
+#include "metrics/trajectory_io.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+namespace vobench::metrics {
+namespace fs = std::filesystem;
+
+TrajectoryFormat parse_trajectory_format(const std::string& name) {
+    if (name == "tum") return TrajectoryFormat::Tum;
+    if (name == "kitti") return TrajectoryFormat::Kitti;
+    if (name == "euroc") return TrajectoryFormat::Euroc;
+    if (name == "putk2-raw") return TrajectoryFormat::Putk2Raw;
+    throw std::invalid_argument("unknown trajectory format '" + name + "' (tum, kitti, euroc or putk2-raw)");
+}
+
+const char* trajectory_format_name(TrajectoryFormat format) {
+    switch (format) {
+    case TrajectoryFormat::Tum: return "tum";
+    case TrajectoryFormat::Kitti: return "kitti";
+    case TrajectoryFormat::Euroc: return "euroc";
+    case TrajectoryFormat::Putk2Raw: return "putk2-raw";
+    }
+    return "?";
+}
+
+namespace {
+
+struct Line {
+    std::size_t number;
+    std::vector<std::string> fields;
+};
+
+// Splits text into non-comment lines of fields separated by any of `separators`.
+std::vector<Line> split_lines(const std::string& text, const char* separators) {
+    std::vector<Line> lines;
+    std::size_t number = 0, begin = 0;
+    while (begin < text.size()) {
+        std::size_t end = text.find('\n', begin);
+        if (end == std::string::npos) end = text.size();
+        ++number;
+        std::string line = text.substr(begin, end - begin);
+        begin = end + 1;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        Line out{number, {}};
+        std::size_t pos = 0;
+        while (pos < line.size()) {
+            const std::size_t start = line.find_first_not_of(separators, pos);
+            if (start == std::string::npos) break;
+            std::size_t stop = line.find_first_of(separators, start);
+            if (stop == std::string::npos) stop = line.size();
+            out.fields.push_back(line.substr(start, stop - start));
+            pos = stop;
+        }
+        if (!out.fields.empty()) lines.push_back(std::move(out));
+    }
+    return lines;
+}
+
+class Reader {
+public:
+    Reader(std::string name, const ReadOptions& options) : name_(std::move(name)), options_(options) {}
+
+    [[noreturn]] void fail(std::size_t line, const std::string& message) const {
+        throw TrajectoryError(fmt::format("{}:{}: {}", name_, line, message));
+    }
+    void warn(std::size_t line, const char* code, const std::string& message) {
+        // One warning per code, with the count of further occurrences added at the end.
+        for (auto& w : warned_)
+            if (w.code == code) { ++w.more; return; }
+        warned_.push_back({code, fmt::format("{}:{}: [{}] {}", name_, line, code, message), 0});
+    }
+    std::vector<std::string> warnings() const {
+        std::vector<std::string> out;
+        for (const auto& w : warned_)
+            out.push_back(w.more ? fmt::format("{} (and {} more lines)", w.text, w.more) : w.text);
+        return out;
+    }
+
+    // Parses fields[0..count) as numbers; non-numbers are errors, non-finite values are errors (or, in
+    // tum-scripts mode, make the caller skip the line: returns false).
+    bool numbers(const Line& line, std::size_t count, std::vector<double>& out) {
+        if (line.fields.size() < count)
+            fail(line.number, fmt::format("expected {} values, found {}", count, line.fields.size()));
+        if (line.fields.size() > count) warn(line.number, "extra-columns", "values past the first " + std::to_string(count) + " are ignored");
+        out.resize(count);
+        for (std::size_t i = 0; i < count; ++i) {
+            const std::string& f = line.fields[i];
+            char* end = nullptr;
+            out[i] = std::strtod(f.c_str(), &end);
+            if (end != f.c_str() + f.size()) fail(line.number, fmt::format("value {} ('{}') is not a number", i + 1, f));
+            if (!std::isfinite(out[i])) {
+                if (options_.tum_scripts) {
+                    warn(line.number, "non-finite", "line has NaN or infinite values, skipped (as evaluate_rpe.py)");
+                    return false;
+                }
+                fail(line.number, fmt::format("value {} is not finite ('{}')", i + 1, f));
+            }
+        }
+        return true;
+    }
+
+    // Checks and normalises a quaternion; false when the line is to be skipped (tum-scripts mode).
+    bool quaternion(std::size_t line, Eigen::Quaterniond& q) {
+        const double norm = q.norm();
+        if (norm < 1e-12) {
+            if (options_.tum_scripts) {
+                warn(line, "zero-quaternion", "zero quaternion, line skipped (as evaluate_rpe.py)");
+                return false;
+            }
+            fail(line, "zero quaternion");
+        }
+        if (std::abs(norm - 1.0) > options_.quaternion_tolerance)
+            warn(line, "non-unit-quaternion", fmt::format("quaternion norm {} is not 1; normalised", norm));
+        // Leave unit quaternions bit for bit as written (a written trajectory reads back exactly).
+        if (std::abs(norm - 1.0) > 1e-12) q.coeffs() /= norm;
+        return true;
+    }
+
+    void add(std::size_t line, StampedPose pose) {
+        poses_.push_back(std::move(pose));
+        lines_.push_back(line);
+    }
+
+    ReadResult finish() {
+        if (poses_.empty()) throw TrajectoryError(name_ + ": no poses");
+        // Sort (stable) by stamp, remembering line numbers for messages.
+        std::vector<std::size_t> order(poses_.size());
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        bool sorted = true;
+        for (std::size_t i = 1; i < poses_.size(); ++i)
+            if (poses_[i].t < poses_[i - 1].t) {
+                if (sorted) warn(lines_[i], "unsorted-stamps", "stamps are not in increasing order; sorted");
+                sorted = false;
+            }
+        if (!sorted)
+            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return poses_[a].t < poses_[b].t; });
+        ReadResult result;
+        result.poses.reserve(poses_.size());
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const StampedPose& p = poses_[order[k]];
+            if (!result.poses.empty() && result.poses.back().t == p.t) {
+                // Real TUM ground truth has these (fr2/desk line 10863): keep the later line, as the
+                // TUM scripts' dict does, and say so.
+                warn(lines_[order[k]], "duplicate-stamp",
+                     fmt::format("duplicate stamp {}; the later line wins (as the TUM scripts)", format_stamp(p.t)));
+                result.poses.back() = p;
+                continue;
+            }
+            result.poses.push_back(p);
+        }
+        result.warnings = warnings();
+        return result;
+    }
+
+    static std::string format_stamp(double t) { return fmt::format("{}", t); }
+    const ReadOptions& options() const { return options_; }
+    std::vector<StampedPose>& poses() { return poses_; }
+
+private:
+    struct Warned {
+        std::string code, text;
+        std::size_t more;
+    };
+    std::string name_;
+    ReadOptions options_;
+    std::vector<StampedPose> poses_;
+    std::vector<std::size_t> lines_;
+    std::vector<Warned> warned_;
+};
+
+void parse_tum(const std::string& text, Reader& r) {
+    std::vector<double> v;
+    bool nanoseconds_warned = false;
+    for (const Line& line : split_lines(text, " \t,")) {
+        if (!r.numbers(line, 8, v)) continue;
+        StampedPose p;
+        p.t = v[0];
+        p.p = {v[1], v[2], v[3]};
+        p.q = Eigen::Quaterniond(v[7], v[4], v[5], v[6]);
+        if (!r.quaternion(line.number, p.q)) continue;
+        if (p.t > 1e13 && !r.options().tum_scripts) {
+            // Seconds since 1970 are ~1.7e9 now; 1e13 s is 300,000 years: these are nanoseconds.
+            if (!nanoseconds_warned) r.warn(line.number, "stamps-in-nanoseconds", "stamps look like nanoseconds; divided by 1e9");
+            nanoseconds_warned = true;
+            p.t *= 1e-9;
+        }
+        r.add(line.number, p);
+    }
+}
+
+void parse_kitti(const std::string& text, Reader& r) {
+    std::vector<double> v;
+    std::size_t index = 0;
+    for (const Line& line : split_lines(text, " \t,")) {
+        r.numbers(line, 12, v);
+        Eigen::Matrix3d R;
+        R << v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10];
+        const double orthogonality = (R.transpose() * R - Eigen::Matrix3d::Identity()).norm();
+        if (orthogonality > 1e-2 || R.determinant() < 0)
+            r.fail(line.number, fmt::format("the 3×3 part is not a rotation (‖RᵀR − I‖ = {})", orthogonality));
+        StampedPose p;
+        p.t = static_cast<double>(index++);
+        p.p = {v[3], v[7], v[11]};
+        p.q = Eigen::Quaterniond(R);
+        r.quaternion(line.number, p.q);
+        r.add(line.number, p);
+    }
+}
+
+void parse_euroc(const std::string& text, Reader& r) {
+    std::vector<double> v;
+    bool first = true;
+    for (const Line& line : split_lines(text, ",")) {
+        // A header without '#': skip it if its first field is not a number.
+        if (first) {
+            first = false;
+            char* end = nullptr;
+            std::strtod(line.fields[0].c_str(), &end);
+            if (end == line.fields[0].c_str()) continue;
+        }
+        Line trimmed = line;
+        for (std::string& f : trimmed.fields) {
+            const auto b = f.find_first_not_of(" \t"), e = f.find_last_not_of(" \t");
+            f = b == std::string::npos ? "" : f.substr(b, e - b + 1);
+        }
+        if (trimmed.fields.size() > 8) trimmed.fields.resize(8);  // velocities and biases follow
+        r.numbers(trimmed, 8, v);
+        StampedPose p;
+        p.t = v[0] * 1e-9;  // EuRoC stamps are nanoseconds
+        p.p = {v[1], v[2], v[3]};
+        p.q = Eigen::Quaterniond(v[4], v[5], v[6], v[7]);
+        r.quaternion(line.number, p.q);
+        r.add(line.number, p);
+    }
+}
+
+void parse_putk2_raw(const std::string& text, Reader& r) {
+    std::vector<double> v;
+    for (const Line& line : split_lines(text, "; \t")) {
+        r.numbers(line, 7, v);
+        if (v[0] != std::floor(v[0]) || v[0] < 0) r.fail(line.number, "the frame id is not a non-negative integer");
+        const Eigen::Vector3d rodrigues(v[1], v[2], v[3]);
+        const double angle = rodrigues.norm();
+        Eigen::Isometry3d M = Eigen::Isometry3d::Identity();
+        if (angle > 0) M.linear() = Eigen::AngleAxisd(angle, rodrigues / angle).toRotationMatrix();
+        M.translation() = Eigen::Vector3d(v[4], v[5], v[6]);
+        // Kraft et al. 2016, eq. 10: camera pose = marker pose · camera-in-marker.
+        const Eigen::Isometry3d T = r.options().camera_in_marker ? M * *r.options().camera_in_marker : M;
+        r.add(line.number, StampedPose::from_isometry(v[0], T));
+    }
+}
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw TrajectoryError(path.string() + ": cannot open file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) throw TrajectoryError(path.string() + ": read error");
+    return ss.str();
+}
+
+}  // namespace
+
+ReadResult parse_trajectory(const std::string& text, const std::string& name, const ReadOptions& options) {
+    Reader reader(name, options);
+    switch (options.format) {
+    case TrajectoryFormat::Tum: parse_tum(text, reader); break;
+    case TrajectoryFormat::Kitti: parse_kitti(text, reader); break;
+    case TrajectoryFormat::Euroc: parse_euroc(text, reader); break;
+    case TrajectoryFormat::Putk2Raw: parse_putk2_raw(text, reader); break;
+    }
+    return reader.finish();
+}
+
+ReadResult read_trajectory(const fs::path& path, const ReadOptions& options) {
+    return parse_trajectory(read_text(path), path.string(), options);
+}
+
+Eigen::Isometry3d read_camera_in_marker(const fs::path& path) {
+    ReadOptions options;
+    Reader r(path.string(), options);
+    const std::vector<Line> lines = split_lines(read_text(path), " \t,");
+    if (lines.empty()) throw TrajectoryError(path.string() + ": no pose (expected `x y z qw qx qy qz`)");
+    std::vector<double> v;
+    r.numbers(lines.front(), 7, v);
+    Eigen::Quaterniond q(v[3], v[4], v[5], v[6]);
+    r.quaternion(lines.front().number, q);
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = q.toRotationMatrix();
+    T.translation() = Eigen::Vector3d(v[0], v[1], v[2]);
+    return T;
+}
+
+std::string format_tum_line(const StampedPose& p) {
+    // fmt's "{}" prints the shortest text that reads back to the same double: full precision.
+    return fmt::format("{} {} {} {} {} {} {} {}", p.t, p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w());
+}
+
+void write_file_atomic(const fs::path& path, const std::string& text) {
+    const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        if (!out) throw std::runtime_error(tmp.string() + ": cannot create file");
+        out << text;
+        out.flush();
+        if (!out) throw std::runtime_error(tmp.string() + ": write error");
+    }
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error(path.string() + ": cannot rename the temporary file into place");
+    }
+}
+
+void write_tum(const fs::path& path, const Trajectory& poses, const std::string& header_comment) {
+    std::string text;
+    if (!header_comment.empty()) text += "# " + header_comment + "\n";
+    text += "# timestamp tx ty tz qx qy qz qw\n";
+    for (const StampedPose& p : poses) {
+        text += format_tum_line(p);
+        text += '\n';
+    }
+    write_file_atomic(path, text);
+}
+
+}  // namespace vobench::metrics
