@@ -1,0 +1,29 @@
+// conformance.hpp — `vobench plugins check`: exercises any plugin library against the ABI rules
+// (DESIGN.md rule 12): entry and versions, struct sizes, the parameter table, create/destroy twice,
+// error paths, and (for odometry) a few synthetic frames; for datasets, a real sequence when given.
+//
+// run_conformance() runs in-process and prints one line per step, flushed, so that a parent process
+// that sees the plugin crash knows the last step reached (check_in_child()).
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <string>
+
+namespace vobench {
+
+struct ConformanceOptions {
+    std::filesystem::path library;
+    std::optional<std::string> dataset_path;  // a sequence to open and read (dataset plugins)
+    int timeout_s = 120;                      // child process only
+};
+
+// In this process. Returns 0 when every step passes, 1 otherwise.
+int run_conformance(const ConformanceOptions& options, std::ostream& out);
+
+// In a child process (`vobench plugins check --in-process ...`): a crash, an abort or a hang of the
+// plugin becomes a failed report. Returns the exit status for the CLI: 0 pass, 1 fail.
+int check_in_child(const ConformanceOptions& options, std::ostream& out);
+
+}  // namespace vobench

@@ -1,0 +1,96 @@
+// instances.hpp — RAII owners of plugin instances, in host terms.
+//
+// Each owns the handle, the host services it was created with, and a reference to its library (so
+// the code stays mapped while the instance lives). Every failed call throws PluginCallError with the
+// plugin's name, the call, the status and the plugin's own message.
+#pragma once
+
+#include "abi/host_context.hpp"
+#include "abi/plugin_library.hpp"
+
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+class PluginCallError : public std::runtime_error {
+public:
+    PluginCallError(const std::string& message, vobench_status status) : std::runtime_error(message), status_(status) {}
+    vobench_status status() const { return status_; }
+
+private:
+    vobench_status status_;
+};
+
+using ParamMap = std::map<std::string, std::string>;
+
+// Checks names, types and ranges against the plugin's table; throws std::invalid_argument naming the
+// plugin and parameter.
+void validate_params(const PluginLibrary& plugin, const ParamMap& params);
+
+// Keeps strings alive and presents them as vobench_params.
+class ParamView {
+public:
+    explicit ParamView(const ParamMap& params);
+    const vobench_params* get() const { return &view_; }
+
+private:
+    std::vector<std::string> keys_, values_;
+    std::vector<const char*> key_ptrs_, value_ptrs_;
+    vobench_params view_{};
+};
+
+const char* status_name(vobench_status status);
+
+class DatasetInstance {
+public:
+    explicit DatasetInstance(PluginPtr plugin);
+    ~DatasetInstance();
+    DatasetInstance(const DatasetInstance&) = delete;
+    DatasetInstance& operator=(const DatasetInstance&) = delete;
+
+    void open(const std::string& path, const ParamMap& options);
+    const vobench_sequence_info& info() const { return *info_; }
+    // Valid until the next read() or destruction.
+    const vobench_frame& read(uint64_t index);
+    const PluginLibrary& plugin() const { return *plugin_; }
+
+private:
+    [[noreturn]] void fail(const char* call, vobench_status status) const;
+    PluginPtr plugin_;
+    const vobench_dataset_api* api_;
+    std::unique_ptr<HostContext> host_;
+    vobench_dataset* handle_ = nullptr;
+    const vobench_sequence_info* info_ = nullptr;
+};
+
+class OdometryInstance {
+public:
+    explicit OdometryInstance(PluginPtr plugin);
+    ~OdometryInstance();
+    OdometryInstance(const OdometryInstance&) = delete;
+    OdometryInstance& operator=(const OdometryInstance&) = delete;
+
+    void start(const vobench_camera& camera, const ParamMap& params, uint64_t seed);
+    // The raw call, for the timed loop: returns the status, throws nothing. On failure, last_error()
+    // has the message.
+    vobench_status process(const vobench_frame& frame, vobench_pose& pose, vobench_tracking_status& tracking) {
+        return api_->process(handle_, &frame, &pose, &tracking);
+    }
+    std::string last_error() const;
+    bool can_reset() const { return api_->reset != nullptr; }
+    void reset();
+    HostContext& host() { return *host_; }
+    const PluginLibrary& plugin() const { return *plugin_; }
+
+private:
+    PluginPtr plugin_;
+    const vobench_odometry_api* api_;
+    std::unique_ptr<HostContext> host_;
+    vobench_odometry* handle_ = nullptr;
+};
+
+}  // namespace vobench

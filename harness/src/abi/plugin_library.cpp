@@ -1,0 +1,136 @@
+#include "abi/plugin_library.hpp"
+
+
+#include <cctype>
+#include <cstddef>
+#include <set>
+
+namespace vobench {
+namespace {
+
+// The smallest struct sizes this host accepts: everything up to the last member of API 1.
+constexpr std::size_t kMinDescriptorSize = offsetof(vobench_plugin_descriptor, odometry) + sizeof(void*);
+constexpr std::size_t kMinParamSize = offsetof(vobench_param_desc, help) + sizeof(const char*);
+constexpr std::size_t kMinDatasetApiSize = offsetof(vobench_dataset_api, destroy) + sizeof(void*);
+constexpr std::size_t kMinOdometryApiSize = offsetof(vobench_odometry_api, destroy) + sizeof(void*);
+
+bool is_identifier(const char* s) {
+    if (s == nullptr || *s == '\0') return false;
+    for (; *s; ++s)
+        if (!(std::islower(static_cast<unsigned char>(*s)) || std::isdigit(static_cast<unsigned char>(*s)) || *s == '_'))
+            return false;
+    return true;
+}
+
+std::string check_params(const vobench_plugin_descriptor* d) {
+    if (d->param_count == 0) return "";
+    if (d->params == nullptr) return "param_count is " + std::to_string(d->param_count) + " but params is NULL";
+    if (d->params->struct_size < kMinParamSize)
+        return "parameter table struct_size " + std::to_string(d->params->struct_size) + " is smaller than " +
+               std::to_string(kMinParamSize);
+    std::set<std::string> names;
+    for (uint32_t i = 0; i < d->param_count; ++i) {
+        const vobench_param_desc* p = VOBENCH_ARRAY_AT(d->params, vobench_param_desc, i);
+        const std::string where = "parameter #" + std::to_string(i);
+        if (p->struct_size != d->params->struct_size) return where + ": struct_size differs from the first entry's";
+        if (!is_identifier(p->name)) return where + ": name is not an identifier [a-z0-9_]+";
+        if (!names.insert(p->name).second) return std::string("parameter '") + p->name + "' is declared twice";
+        if (p->type < VOBENCH_PARAM_BOOL || p->type > VOBENCH_PARAM_ENUM)
+            return std::string("parameter '") + p->name + "': unknown type " + std::to_string(p->type);
+        if (p->default_value == nullptr) return std::string("parameter '") + p->name + "': no default value";
+        if (p->type == VOBENCH_PARAM_ENUM && (p->choices == nullptr || *p->choices == '\0'))
+            return std::string("parameter '") + p->name + "': enum without choices";
+        if ((p->type == VOBENCH_PARAM_INT || p->type == VOBENCH_PARAM_DOUBLE) && !(p->min_value <= p->max_value))
+            return std::string("parameter '") + p->name + "': min_value > max_value";
+        sdk::Param sp{p->name, p->type, p->default_value, p->min_value, p->max_value,
+                      p->choices ? p->choices : "", p->help ? p->help : ""};
+        const std::string why = sdk::check_param_value(sp, sp.default_value);
+        if (!why.empty()) return std::string("parameter '") + p->name + "': default " + why;
+    }
+    return "";
+}
+
+}  // namespace
+
+const char* kind_name(vobench_plugin_kind kind) {
+    switch (kind) {
+    case VOBENCH_KIND_DATASET: return "dataset";
+    case VOBENCH_KIND_ODOMETRY: return "odometry";
+    default: return "unknown";
+    }
+}
+
+std::string validate_descriptor(const vobench_plugin_descriptor* d) {
+    if (d == nullptr) return "the entry function returned no descriptor (NULL) for ABI 1";
+    if (d->struct_size < kMinDescriptorSize)
+        return "descriptor struct_size " + std::to_string(d->struct_size) + " is smaller than the ABI 1 minimum " +
+               std::to_string(kMinDescriptorSize);
+    if (d->abi_version != VOBENCH_ABI_VERSION)
+        return "descriptor says ABI " + std::to_string(d->abi_version) + ", this host speaks ABI " +
+               std::to_string(VOBENCH_ABI_VERSION);
+    if (d->api_version < 1) return "descriptor says API version 0";
+    if (!is_identifier(d->name)) return "descriptor name is missing or not an identifier [a-z0-9_]+";
+    if (d->version == nullptr || *d->version == '\0') return "descriptor has no version";
+    if (d->description == nullptr) return "descriptor has no description";
+    if (d->license == nullptr || *d->license == '\0') return "descriptor has no license";
+    if (std::string why = check_params(d); !why.empty()) return why;
+    if (d->kind == VOBENCH_KIND_DATASET) {
+        const vobench_dataset_api* t = d->dataset;
+        if (t == nullptr) return "dataset plugin without a dataset table";
+        if (d->odometry != nullptr) return "dataset plugin also fills the odometry table";
+        if (t->struct_size < kMinDatasetApiSize)
+            return "dataset table struct_size " + std::to_string(t->struct_size) + " is smaller than " +
+                   std::to_string(kMinDatasetApiSize);
+        if (!t->create || !t->open || !t->describe || !t->read_frame || !t->last_error || !t->destroy)
+            return "dataset table has a NULL function";
+    } else if (d->kind == VOBENCH_KIND_ODOMETRY) {
+        const vobench_odometry_api* t = d->odometry;
+        if (t == nullptr) return "odometry plugin without an odometry table";
+        if (d->dataset != nullptr) return "odometry plugin also fills the dataset table";
+        if (t->struct_size < kMinOdometryApiSize)
+            return "odometry table struct_size " + std::to_string(t->struct_size) + " is smaller than " +
+                   std::to_string(kMinOdometryApiSize);
+        if (!t->create || !t->start || !t->process || !t->last_error || !t->destroy)
+            return "odometry table has a NULL function (only reset may be NULL)";
+    } else {
+        return "unknown plugin kind " + std::to_string(d->kind);
+    }
+    return "";
+}
+
+std::shared_ptr<const PluginLibrary> PluginLibrary::load(const std::filesystem::path& path) {
+    const std::string where = path.string() + ": ";
+    std::error_code fs_error;
+    if (!std::filesystem::is_regular_file(path, fs_error)) throw PluginLoadError(where + "no such file");
+
+    std::shared_ptr<PluginLibrary> plugin(new PluginLibrary());
+    plugin->path_ = path;
+    boost::system::error_code ec;
+    // rtld_local: two plugins may carry symbols of the same name without clashing.
+    plugin->library_.load(boost::dll::fs::path(path.string()), boost::dll::load_mode::rtld_lazy | boost::dll::load_mode::rtld_local, ec);
+    if (ec) throw PluginLoadError(where + "cannot be loaded as a shared library (" + ec.message() + ")");
+
+    if (!plugin->library_.has(VOBENCH_ENTRY_SYMBOL)) {
+        // Name another generation's entry if the library has one, so the user knows what to rebuild.
+        for (int abi = 0; abi < 10; ++abi) {
+            const std::string other = "vobench_plugin_entry_v" + std::to_string(abi);
+            if (abi != static_cast<int>(VOBENCH_ABI_VERSION) && plugin->library_.has(other))
+                throw PluginLoadError(where + "built for plugin ABI " + std::to_string(abi) + " (exports " + other +
+                                      "), this host speaks ABI " + std::to_string(VOBENCH_ABI_VERSION));
+        }
+        throw PluginLoadError(where + "not a vobench plugin (no " VOBENCH_ENTRY_SYMBOL " symbol)");
+    }
+    plugin->entry_ = plugin->library_.get<const vobench_plugin_descriptor*(uint32_t, uint32_t)>(VOBENCH_ENTRY_SYMBOL);
+    plugin->descriptor_ = plugin->entry_(VOBENCH_ABI_VERSION, VOBENCH_API_VERSION);
+    if (std::string why = validate_descriptor(plugin->descriptor_); !why.empty()) throw PluginLoadError(where + why);
+
+    const vobench_plugin_descriptor& d = *plugin->descriptor_;
+    for (uint32_t i = 0; i < d.param_count; ++i) {
+        const vobench_param_desc* p = VOBENCH_ARRAY_AT(d.params, vobench_param_desc, i);
+        plugin->params_.push_back({p->name, p->type, p->default_value, p->min_value, p->max_value,
+                                   p->choices ? p->choices : "", p->help ? p->help : ""});
+    }
+    return plugin;
+}
+
+}  // namespace vobench

@@ -1,0 +1,59 @@
+// plugin_library.hpp — one loaded plugin library and its validated descriptor.
+//
+// Loading goes through Boost.DLL. A library is refused, with a one-line reason and never a crash, when
+// it cannot be opened, exports no vobench_plugin_entry_v1 (the reason names any other generation it
+// does export), returns no descriptor, or returns a malformed one (see validate_descriptor()).
+// The library stays loaded as long as any shared_ptr to it lives: instances hold one.
+#pragma once
+
+#include <vobench/plugin.hpp>
+#include <vobench/vobench_plugin.h>
+
+#include <boost/dll/shared_library.hpp>
+
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+class PluginLoadError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+// The reason a descriptor is unusable by this host, or "" when it is fine. Pure: used by the loader
+// and by the conformance check.
+std::string validate_descriptor(const vobench_plugin_descriptor* d);
+
+// "dataset" / "odometry" / "unknown".
+const char* kind_name(vobench_plugin_kind kind);
+
+class PluginLibrary {
+public:
+    // Loads and validates; throws PluginLoadError("<path>: <reason>").
+    static std::shared_ptr<const PluginLibrary> load(const std::filesystem::path& path);
+
+    const vobench_plugin_descriptor& descriptor() const { return *descriptor_; }
+    const std::filesystem::path& path() const { return path_; }
+    std::string name() const { return descriptor_->name; }
+    vobench_plugin_kind kind() const { return descriptor_->kind; }
+    // The parameter table as SDK values (used for validation and `plugins info`).
+    const std::vector<sdk::Param>& params() const { return params_; }
+    // The entry function, for the conformance check.
+    vobench_plugin_entry_fn entry() const { return entry_; }
+
+private:
+    PluginLibrary() = default;
+    boost::dll::shared_library library_;
+    std::filesystem::path path_;
+    vobench_plugin_entry_fn entry_ = nullptr;
+    const vobench_plugin_descriptor* descriptor_ = nullptr;
+    std::vector<sdk::Param> params_;
+};
+
+using PluginPtr = std::shared_ptr<const PluginLibrary>;
+
+}  // namespace vobench

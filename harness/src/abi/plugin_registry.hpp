@@ -1,0 +1,46 @@
+// plugin_registry.hpp — where plugins are found.
+//
+// Search order (first match of a name wins):
+//   1. the folders of $VOBENCH_PLUGIN_PATH (':'-separated), so users can override in-tree plugins;
+//   2. <exe>/../plugins (the build tree: build/bin/vobench -> build/plugins);
+//   3. <exe>/../lib/vobench/plugins (an installed tree).
+// Every regular file ending in .so in those folders is a candidate. A NAME that contains a '/' or ends
+// in .so is taken as an explicit path instead.
+#pragma once
+
+#include "abi/plugin_library.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+struct PluginScan {
+    std::vector<PluginPtr> plugins;     // loadable, one per name (first in search order)
+    std::vector<std::string> refusals;  // one line per file that was refused
+};
+
+class PluginRegistry {
+public:
+    // Uses the search order above.
+    PluginRegistry();
+    // Uses exactly these folders (tests).
+    explicit PluginRegistry(std::vector<std::filesystem::path> folders);
+
+    const std::vector<std::filesystem::path>& folders() const { return folders_; }
+
+    PluginScan scan() const;
+    // Finds a plugin by name (or explicit path) and, when `kind` is not 0, of that kind.
+    // Throws PluginLoadError naming what was searched.
+    PluginPtr find(const std::string& name_or_path, vobench_plugin_kind kind = 0) const;
+
+private:
+    std::vector<std::filesystem::path> folders_;
+};
+
+// The folder holding the running executable.
+std::filesystem::path executable_dir();
+
+}  // namespace vobench

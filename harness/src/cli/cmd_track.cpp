@@ -1,0 +1,77 @@
+// vobench track — one odometry plugin on one sequence.
+#include "cli/commands.hpp"
+#include "cli/protocol_options.hpp"
+#include "run/track.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+namespace vobench::cli {
+
+void add_track_command(CLI::App& app, int& exit_code) {
+    auto* c = app.add_subcommand("track", "Run one odometry plugin on one sequence; write trajectory.txt and timing.csv");
+    static TrackOptions options;
+    static std::string sensor, out;
+    static std::vector<std::string> dataset_options, params;
+    static bool json = false;
+    static ProtocolArgs protocol;
+    c->add_option("--dataset", options.dataset, "Dataset reader plugin (name or path)")->required();
+    c->add_option("--path", options.path, "Sequence folder")->required();
+    c->add_option("--sensor", sensor, "Sensor, passed to the reader as option sensor=S");
+    c->add_option("--option", dataset_options, "Reader option key=value (repeatable)");
+    c->add_option("--algorithm", options.algorithm, "Odometry plugin (name or path)")->required();
+    c->add_option("--param", params, "Odometry parameter key=value (repeatable)");
+    c->add_option("--frames", options.max_frames, "Use only the first N frames (0: all)");
+    c->add_option("--seed", options.seed, "Seed handed to the plugin")->capture_default_str();
+    c->add_option("--out", out, "Output folder for trajectory.txt and timing.csv");
+    c->add_flag("--json", json, "Print a JSON summary on stdout");
+    protocol.add_to(c);
+    c->callback([&exit_code] {
+        options.dataset_options = parse_key_values(dataset_options, "--option");
+        if (!sensor.empty()) options.dataset_options["sensor"] = sensor;
+        options.params = parse_key_values(params, "--param");
+        options.protocol = protocol.build();
+        const TrackResult r = run_track(options, PluginRegistry());
+        if (!out.empty()) {
+            write_track_outputs(r, out);
+            spdlog::info("wrote {}/trajectory.txt and timing.csv", out);
+        }
+        const double ms = r.mean_ms();
+        nlohmann::json j{{"frames", r.frames.size()},
+                         {"failed_frames", r.failed_frames},
+                         {"ms_per_frame", ms},
+                         {"fps", ms > 0 ? 1000.0 / ms : 0.0},
+                         {"ate_rmse", nullptr},
+                         {"rpe_trans_rmse", nullptr},
+                         {"rpe_rot_deg_rmse", nullptr}};
+        if (r.evaluation) {
+            if (r.evaluation->ate) j["ate_rmse"] = r.evaluation->ate->stats.rmse;
+            if (r.evaluation->rpe) {
+                j["rpe_trans_rmse"] = r.evaluation->rpe->trans.rmse;
+                j["rpe_rot_deg_rmse"] = r.evaluation->rpe->rot_deg.rmse;
+            }
+            j["protocol"] = metrics::protocol_json(r.evaluation->protocol);
+        } else {
+            spdlog::warn("no evaluation: {}", r.evaluation_error);
+        }
+        if (!r.error.empty()) j["error"] = r.error;
+        if (json) {
+            std::cout << j.dump(2) << std::endl;
+        } else {
+            std::cout << fmt::format("{} ({}): {} frames, {} not tracked, {:.3f} ms/frame ({:.1f} fps) in the plugin\n",
+                                     r.sequence, r.sensor, r.frames.size(), r.failed_frames, ms, ms > 0 ? 1000.0 / ms : 0.0);
+            if (r.evaluation && r.evaluation->ate) std::cout << fmt::format("ATE rmse {:.6f} m\n", r.evaluation->ate->stats.rmse);
+            if (r.evaluation && r.evaluation->rpe)
+                std::cout << fmt::format("RPE (delta {} {}) rmse {:.6f} m, {:.6f} deg\n", r.evaluation->protocol.rpe_delta,
+                                         metrics::delta_unit_name(r.evaluation->protocol.rpe_unit),
+                                         r.evaluation->rpe->trans.rmse, r.evaluation->rpe->rot_deg.rmse);
+        }
+        if (!r.error.empty()) spdlog::error("{}", r.error);
+        exit_code = r.error.empty() ? 0 : 1;
+    });
+}
+
+}  // namespace vobench::cli

@@ -1,0 +1,22 @@
+// commands.hpp — each subcommand registers itself on the CLI11 app. A command's callback does the
+// work and stores its exit status in `exit_code` (0 success, 1 failure; usage errors are CLI11's).
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace vobench::cli {
+
+void add_plugins_commands(CLI::App& app, int& exit_code);
+void add_track_command(CLI::App& app, int& exit_code);
+void add_eval_command(CLI::App& app, int& exit_code);
+void add_traj_command(CLI::App& app, int& exit_code);
+void add_data_command(CLI::App& app, int& exit_code);
+
+// "k=v" items into a map; throws CLI::ValidationError naming the bad item.
+std::map<std::string, std::string> parse_key_values(const std::vector<std::string>& items, const std::string& option);
+
+}  // namespace vobench::cli

@@ -1,0 +1,65 @@
+// vobench — the command-line host. See `vobench --help`.
+#include "cli/commands.hpp"
+
+#include <vobench/vobench_plugin.h>
+
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <iostream>
+
+#ifndef VOBENCH_VERSION
+#define VOBENCH_VERSION "unknown"
+#endif
+
+namespace vobench::cli {
+
+std::map<std::string, std::string> parse_key_values(const std::vector<std::string>& items, const std::string& option) {
+    std::map<std::string, std::string> out;
+    for (const std::string& item : items) {
+        const auto eq = item.find('=');
+        if (eq == std::string::npos || eq == 0)
+            throw CLI::ValidationError(option, "'" + item + "' is not of the form key=value");
+        out[item.substr(0, eq)] = item.substr(eq + 1);
+    }
+    return out;
+}
+
+}  // namespace vobench::cli
+
+int main(int argc, char** argv) {
+    // Logs go to stderr so that --json output on stdout stays machine-readable.
+    auto logger = spdlog::stderr_color_mt("vobench");
+    spdlog::set_default_logger(logger);
+    spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
+
+    CLI::App app{"vobench — a benchmark harness for RGB-D visual odometry"};
+    app.require_subcommand(0, 1);
+    app.set_version_flag("--version",
+                         std::string("vobench ") + VOBENCH_VERSION + " (plugin ABI " + std::to_string(VOBENCH_ABI_VERSION) +
+                             ", API " + std::to_string(VOBENCH_API_VERSION) + ")");
+    bool verbose = false, quiet = false;
+    app.add_flag("-v,--verbose", verbose, "More log output");
+    app.add_flag("-q,--quiet", quiet, "Only warnings and errors");
+    app.parse_complete_callback([&] {
+        spdlog::set_level(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
+    });
+
+    int exit_code = 0;
+    vobench::cli::add_plugins_commands(app, exit_code);
+    vobench::cli::add_track_command(app, exit_code);
+    vobench::cli::add_eval_command(app, exit_code);
+    vobench::cli::add_traj_command(app, exit_code);
+    vobench::cli::add_data_command(app, exit_code);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const std::exception& e) {
+        spdlog::error("{}", e.what());
+        return 1;
+    }
+    if (argc == 1) std::cout << app.help();
+    return exit_code;
+}

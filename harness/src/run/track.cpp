@@ -1,0 +1,133 @@
+#include "run/track.hpp"
+
+#include "metrics/trajectory_io.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <chrono>
+#include <cmath>
+
+namespace vobench {
+
+double TrackResult::mean_ms() const {
+    if (frames.empty()) return 0.0;
+    double total = 0;
+    for (const FrameRecord& f : frames) total += static_cast<double>(f.process_ns);
+    return total / static_cast<double>(frames.size()) * 1e-6;
+}
+
+metrics::Trajectory ground_truth_of(const vobench_sequence_info& info) {
+    metrics::Trajectory gt;
+    if (info.ground_truth == nullptr) return gt;
+    for (uint64_t k = 0; k < info.gt_count; ++k) {
+        const double* v = info.ground_truth + 8 * k;
+        metrics::StampedPose p;
+        p.t = v[0];
+        p.p = {v[1], v[2], v[3]};
+        p.q = Eigen::Quaterniond(v[7], v[4], v[5], v[6]).normalized();
+        gt.push_back(p);
+    }
+    return gt;
+}
+
+TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry) {
+    DatasetInstance dataset(registry.find(options.dataset, VOBENCH_KIND_DATASET));
+    dataset.open(options.path, options.dataset_options);
+    const vobench_sequence_info& info = dataset.info();
+    OdometryInstance odometry(registry.find(options.algorithm, VOBENCH_KIND_ODOMETRY));
+    odometry.start(*info.camera, options.params, options.seed);
+
+    TrackResult result;
+    result.sequence = info.name ? info.name : "";
+    result.sensor = info.sensor ? info.sensor : "";
+    const uint64_t count = options.max_frames > 0 ? std::min(options.max_frames, info.frame_count) : info.frame_count;
+    spdlog::info("tracking {} frames of {} ({}) with {}", count, result.sequence, result.sensor, odometry.plugin().name());
+    for (uint64_t i = 0; i < count; ++i) {
+        const vobench_frame& frame = dataset.read(i);
+        vobench_pose pose{};
+        pose.struct_size = sizeof(pose);
+        vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
+        odometry.host().begin_call();
+        const auto t0 = std::chrono::steady_clock::now();
+        const vobench_status status = odometry.process(frame, pose, tracking);
+        const auto t1 = std::chrono::steady_clock::now();
+        if (status != VOBENCH_OK) {
+            result.error = fmt::format("plugin '{}' failed at frame {} ({}): {}", odometry.plugin().name(), i,
+                                       status_name(status), odometry.last_error());
+            break;
+        }
+        FrameRecord rec;
+        rec.index = i;
+        rec.stamp = frame.timestamp;
+        rec.process_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+        rec.tracking = tracking;
+        rec.stages = odometry.host().stage_ns();
+        rec.counters = odometry.host().counters();
+        const Eigen::Quaterniond q(pose.qw, pose.qx, pose.qy, pose.qz);
+        if (!std::isfinite(pose.tx) || !std::isfinite(pose.ty) || !std::isfinite(pose.tz) || !std::isfinite(q.norm()) ||
+            q.norm() < 1e-9) {
+            result.error = fmt::format("plugin '{}' returned a non-finite pose at frame {}", odometry.plugin().name(), i);
+            break;
+        }
+        if (tracking != VOBENCH_TRACKING_OK) ++result.failed_frames;
+        metrics::StampedPose sp;
+        sp.t = frame.timestamp;
+        sp.p = {pose.tx, pose.ty, pose.tz};
+        sp.q = q.normalized();
+        result.estimate.push_back(sp);
+        result.frames.push_back(std::move(rec));
+    }
+
+    const metrics::Trajectory gt = ground_truth_of(info);
+    if (gt.empty()) {
+        result.evaluation_error = "the sequence has no ground truth";
+    } else if (result.estimate.size() < 2) {
+        result.evaluation_error = "fewer than two estimated poses";
+    } else {
+        try {
+            result.evaluation = metrics::evaluate(gt, result.estimate, options.protocol);
+        } catch (const std::exception& e) {
+            result.evaluation_error = e.what();
+        }
+    }
+    return result;
+}
+
+void write_track_outputs(const TrackResult& result, const std::filesystem::path& dir) {
+    std::filesystem::create_directories(dir);
+    metrics::write_tum(dir / "trajectory.txt", result.estimate, "vobench estimate: " + result.sequence);
+    // Columns: the union of stage and counter names, in first-seen order.
+    std::vector<std::string> stages, counters;
+    for (const FrameRecord& f : result.frames) {
+        for (const auto& [name, ns] : f.stages)
+            if (std::find(stages.begin(), stages.end(), name) == stages.end()) stages.push_back(name);
+        for (const auto& [name, v] : f.counters)
+            if (std::find(counters.begin(), counters.end(), name) == counters.end()) counters.push_back(name);
+    }
+    std::string csv = "index,stamp,process_ms,status";
+    for (const auto& s : stages) csv += ",stage_" + s + "_ms";
+    for (const auto& c : counters) csv += ",count_" + c;
+    csv += '\n';
+    static const char* kStatus[] = {"ok", "lost", "failed"};
+    for (const FrameRecord& f : result.frames) {
+        csv += fmt::format("{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6,
+                           f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
+        for (const auto& s : stages) {
+            double ms = 0;
+            for (const auto& [name, ns] : f.stages)
+                if (name == s) ms = static_cast<double>(ns) * 1e-6;
+            csv += fmt::format(",{}", ms);
+        }
+        for (const auto& c : counters) {
+            std::string cell;
+            for (const auto& [name, v] : f.counters)
+                if (name == c) cell = fmt::format("{}", v);
+            csv += "," + cell;
+        }
+        csv += '\n';
+    }
+    metrics::write_file_atomic(dir / "timing.csv", csv);
+}
+
+}  // namespace vobench

@@ -1,0 +1,59 @@
+// track.hpp — one odometry plugin on one sequence: the smallest useful run (`vobench track`).
+//
+// Frames are read and decoded outside the timed window; only the plugin's process() call is timed,
+// with the steady clock, in nanoseconds. Stage times and counters come from the host services.
+// Evaluation happens after the loop.
+#pragma once
+
+#include "abi/instances.hpp"
+#include "abi/plugin_registry.hpp"
+#include "metrics/evaluation.hpp"
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+struct TrackOptions {
+    std::string dataset;          // reader plugin name or path
+    std::string path;             // sequence folder
+    ParamMap dataset_options;
+    std::string algorithm;        // odometry plugin name or path
+    ParamMap params;
+    uint64_t max_frames = 0;      // 0: all
+    uint64_t seed = 1;
+    metrics::Protocol protocol;
+};
+
+struct FrameRecord {
+    uint64_t index = 0;
+    double stamp = 0;
+    int64_t process_ns = 0;
+    vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
+    std::vector<std::pair<std::string, int64_t>> stages;
+    std::vector<std::pair<std::string, double>> counters;
+};
+
+struct TrackResult {
+    metrics::Trajectory estimate;
+    std::vector<FrameRecord> frames;
+    std::size_t failed_frames = 0;        // frames whose tracking status was not OK
+    std::string error;                    // set when the plugin returned an error and the run stopped
+    std::optional<metrics::Evaluation> evaluation;
+    std::string evaluation_error;         // why there is no evaluation (no ground truth, no overlap ...)
+    std::string sequence, sensor;
+    double mean_ms() const;
+};
+
+TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry);
+
+// trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, status, one column
+// per stage in ms, one per counter) into `dir`, each written atomically.
+void write_track_outputs(const TrackResult& result, const std::filesystem::path& dir);
+
+// The ground truth of an open sequence as a trajectory.
+metrics::Trajectory ground_truth_of(const vobench_sequence_info& info);
+
+}  // namespace vobench
