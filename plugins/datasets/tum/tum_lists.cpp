@@ -1,0 +1,37 @@
+#include "tum_lists.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+#include <stdexcept>
+
+namespace vobench::tum {
+
+std::vector<ListEntry> parse_list(const std::string& text, const std::string& name) {
+    std::vector<ListEntry> entries;
+    std::istringstream in(text);
+    std::string line;
+    std::size_t number = 0;
+    while (std::getline(in, line)) {
+        ++number;
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        const std::size_t first = line.find_first_not_of(" \t");
+        if (first == std::string::npos || line[first] == '#') continue;
+        std::istringstream fields(line);
+        std::string stamp_text, path;
+        fields >> stamp_text >> path;
+        const std::string where = name + ":" + std::to_string(number) + ": ";
+        char* end = nullptr;
+        const double stamp = std::strtod(stamp_text.c_str(), &end);
+        if (stamp_text.empty() || end != stamp_text.c_str() + stamp_text.size() || !std::isfinite(stamp))
+            throw std::runtime_error(where + "expected `timestamp path`, the stamp '" + stamp_text + "' is not a number");
+        if (path.empty()) throw std::runtime_error(where + "expected `timestamp path`, the path is missing");
+        if (!entries.empty() && stamp <= entries.back().stamp)
+            throw std::runtime_error(where + "stamp " + stamp_text + " is not after the previous line's");
+        entries.push_back({stamp, path});
+    }
+    if (entries.empty()) throw std::runtime_error(name + ": no entries (empty sequence)");
+    return entries;
+}
+
+}  // namespace vobench::tum
