@@ -1,0 +1,62 @@
+#include "abi/instances.hpp"
+#include "test_support.hpp"
+
+#include <vobench/plugin.hpp>
+
+#include <catch2/catch.hpp>
+
+using namespace vobench;
+using Catch::Matchers::Contains;
+
+TEST_CASE("an exception thrown in plugin code becomes an error status with its message", "[sdk]") {
+    OdometryInstance odo(PluginLibrary::load(test::fault_plugin("vobench_counter")));
+    const vobench_camera camera{sizeof(vobench_camera), 1, 1, 1, 1, 0, 0, 0, 0, {0}};
+    odo.start(camera, {{"throw_at", "1"}}, 1);
+    uint16_t d = 0;
+    uint8_t c[3] = {};
+    vobench_image ci{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, c};
+    vobench_image di{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &d};
+    vobench_frame frame{sizeof(vobench_frame), 0, 0, 0, &ci, &di, 0.001};
+    vobench_pose pose{};
+    pose.struct_size = sizeof(pose);
+    vobench_tracking_status tracking;
+    REQUIRE(odo.process(frame, pose, tracking) == VOBENCH_OK);
+    frame.index = 1;
+    CHECK(odo.process(frame, pose, tracking) == VOBENCH_ERROR);
+    CHECK(odo.last_error() == "deliberate failure at frame 1");
+}
+
+TEST_CASE("the SDK writes only the pose fields the host's struct covers", "[sdk]") {
+    OdometryInstance odo(PluginLibrary::load(test::fault_plugin("vobench_counter")));
+    const vobench_camera camera{sizeof(vobench_camera), 1, 1, 1, 1, 0, 0, 0, 0, {0}};
+    odo.start(camera, {}, 1);
+    uint16_t d = 0;
+    uint8_t c[3] = {};
+    vobench_image ci{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, c};
+    vobench_image di{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &d};
+    vobench_frame frame{sizeof(vobench_frame), 0, 0, 0, &ci, &di, 0.001};
+    // An older host whose pose ends after tx: the fields past it must stay untouched.
+    vobench_pose pose{};
+    pose.struct_size = static_cast<uint32_t>(offsetof(vobench_pose, ty));
+    pose.ty = -7.0;
+    vobench_tracking_status tracking;
+    REQUIRE(odo.process(frame, pose, tracking) == VOBENCH_OK);
+    CHECK(pose.tx == 1.0);
+    CHECK(pose.ty == -7.0);
+    CHECK(pose.struct_size == offsetof(vobench_pose, ty));
+}
+
+TEST_CASE("parameter parsing rules shared by host and SDK", "[sdk][params]") {
+    sdk::Param p{"x", VOBENCH_PARAM_DOUBLE, "1", 0.0, 2.0, "", "h"};
+    CHECK(sdk::check_param_value(p, "1.5").empty());
+    CHECK_THAT(sdk::check_param_value(p, "2.5"), Contains("outside"));
+    CHECK_THAT(sdk::check_param_value(p, "nan"), Contains("not a finite number"));
+    CHECK_THAT(sdk::check_param_value(p, "1.5x"), Contains("not a finite number"));
+    sdk::Param e{"m", VOBENCH_PARAM_ENUM, "a", 0, 0, "a|bb|c", "h"};
+    CHECK(sdk::check_param_value(e, "bb").empty());
+    CHECK_FALSE(sdk::check_param_value(e, "b").empty());
+    CHECK_FALSE(sdk::check_param_value(e, "a|bb").empty());
+    sdk::Param b{"f", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "h"};
+    CHECK(sdk::check_param_value(b, "off").empty());
+    CHECK_FALSE(sdk::check_param_value(b, "maybe").empty());
+}

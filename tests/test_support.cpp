@@ -1,0 +1,51 @@
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <random>
+#include <sys/wait.h>
+
+namespace vobench::test {
+namespace fs = std::filesystem;
+
+std::optional<fs::path> data_dir(const std::string& sub) {
+    const char* env = std::getenv("VOBENCH_DATA_DIR");
+    fs::path root = env && *env ? fs::path(env) : fs::path(VOBENCH_TEST_DATA_DIR);
+    fs::path p = sub.empty() ? root : root / sub;
+    if (!fs::exists(p)) {
+        WARN("SKIPPED: real test data " << p << " is absent (set VOBENCH_DATA_DIR)");
+        return std::nullopt;
+    }
+    return p;
+}
+
+fs::path fault_plugin(const std::string& name) { return fs::path(VOBENCH_FAULT_PLUGIN_DIR) / (name + ".so"); }
+fs::path plugin(const std::string& name) { return fs::path(VOBENCH_PLUGIN_DIR) / ("vobench_" + name + ".so"); }
+fs::path cli() { return fs::path(VOBENCH_CLI); }
+
+TempDir::TempDir() {
+    std::random_device rd;
+    path_ = fs::temp_directory_path() / ("vobench-test-" + std::to_string(rd()) + std::to_string(rd()));
+    fs::create_directories(path_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+}
+
+int run_command(const std::string& command, std::string& out) {
+    out.clear();
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return -1;
+    std::array<char, 4096> buffer;
+    std::size_t n;
+    while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) out.append(buffer.data(), n);
+    const int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+}  // namespace vobench::test
