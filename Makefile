@@ -1,0 +1,31 @@
+# The two commands of the README's quick start, on a fresh Debian 12 machine:
+#   make demo   — install what is missing, build, and run the main job on embedded synthetic data
+#   make test   — install what is missing, build, and run the whole CTest suite
+BUILD_DIR ?= build
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?=
+
+.PHONY: all deps configure build test demo clean
+
+all: build
+
+deps:
+	@./scripts/install-deps.sh
+
+# Configure once; later builds reuse the tree (CMake re-runs itself when a CMakeLists changes).
+$(BUILD_DIR)/CMakeCache.txt: | deps
+	cmake -S . -B $(BUILD_DIR) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_FLAGS)
+
+configure: deps $(BUILD_DIR)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS)
+
+test: build
+	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS)
+
+demo: build
+	./scripts/demo.sh $(BUILD_DIR)
+
+clean:
+	rm -rf $(BUILD_DIR)

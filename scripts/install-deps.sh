@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages vobench needs, only those missing, non-interactively.
+# Used by `make demo` and `make test`; safe to run again (it does nothing when all are present).
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git
+  libopencv-dev libopencv-contrib-dev   # OpenCV 4.6 with rgbd and optflow
+  libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
+  libboost-dev libboost-filesystem-dev  # Boost.DLL, Boost.Process (1.74)
+  libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
+  catch2 libbenchmark-dev
+  binutils                              # nm, for the exported-symbol test
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  [[ "$p" == \#* ]] && continue
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "vobench: installing missing Debian packages: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  if command -v sudo >/dev/null 2>&1; then SUDO="sudo"; else
+    echo "vobench: these packages are missing and I am not root (and there is no sudo): ${missing[*]}" >&2
+    exit 1
+  fi
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
