@@ -10,8 +10,12 @@ std::vector<double> stamps_of(const Trajectory& trajectory) {
 }
 
 AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
+    return compute_ate(gt, est, associate(stamps_of(gt), stamps_of(est), options.association), options);
+}
+
+AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const Association& association, const AteOptions& options) {
     AteResult r;
-    r.association = associate(stamps_of(gt), stamps_of(est), options.association);
+    r.association = association;
     const auto& matches = r.association.matches;
     Eigen::Matrix3Xd model(3, matches.size()), data(3, matches.size());
     for (std::size_t k = 0; k < matches.size(); ++k) {

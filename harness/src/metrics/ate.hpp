@@ -29,6 +29,8 @@ struct AteResult {
 };
 
 AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const AteOptions& options);
+// The same on an association already made (evaluate() shares one between ATE and RPE).
+AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const Association& association, const AteOptions& options);
 
 std::vector<double> stamps_of(const Trajectory& trajectory);
 

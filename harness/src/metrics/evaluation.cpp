@@ -18,10 +18,14 @@ Evaluation evaluate(const Trajectory& gt, const Trajectory& est, const Protocol&
                                     "use --protocol paper for other alignments");
     Evaluation e;
     e.protocol = protocol;
-    if (protocol.ate) e.ate = compute_ate(gt, est, {protocol.association, protocol.alignment, protocol.align_first});
+    // One association serves ATE and the paper's RPE.
+    const bool needs_association = protocol.ate || (protocol.rpe && protocol.name == ProtocolName::Paper);
+    const Association association =
+        needs_association ? associate(stamps_of(gt), stamps_of(est), protocol.association) : Association{};
+    if (protocol.ate) e.ate = compute_ate(gt, est, association, {protocol.association, protocol.alignment, protocol.align_first});
     if (protocol.rpe) {
         const RpeOptions options{protocol.rpe_delta, protocol.rpe_unit, protocol.association};
-        e.rpe = protocol.name == ProtocolName::Paper ? compute_rpe_paper(gt, est, options)
+        e.rpe = protocol.name == ProtocolName::Paper ? compute_rpe_paper(gt, est, association, options)
                                                       : compute_rpe_tum_scripts(gt, est, options);
     }
     return e;

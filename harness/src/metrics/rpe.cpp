@@ -56,8 +56,11 @@ RpeResult summarise(std::vector<RpePair> pairs, std::size_t matched) {
 }  // namespace
 
 RpeResult compute_rpe_paper(const Trajectory& gt, const Trajectory& est, const RpeOptions& options) {
+    return compute_rpe_paper(gt, est, associate(stamps_of(gt), stamps_of(est), options.association), options);
+}
+
+RpeResult compute_rpe_paper(const Trajectory& gt, const Trajectory& est, const Association& assoc, const RpeOptions& options) {
     if (!(options.delta > 0)) throw std::invalid_argument("RPE delta must be positive");
-    const Association assoc = associate(stamps_of(gt), stamps_of(est), options.association);
     const std::size_t n = assoc.matches.size();
     std::vector<Eigen::Isometry3d> Q(n), P(n);
     std::vector<double> index(n, 0.0);

@@ -52,6 +52,7 @@ struct RpeResult {
 };
 
 RpeResult compute_rpe_paper(const Trajectory& gt, const Trajectory& est, const RpeOptions& options);
+RpeResult compute_rpe_paper(const Trajectory& gt, const Trajectory& est, const Association& association, const RpeOptions& options);
 RpeResult compute_rpe_tum_scripts(const Trajectory& gt, const Trajectory& est, const RpeOptions& options);
 
 // Rotation angle of a unit quaternion in radians, in [0, π].
