@@ -4,8 +4,8 @@
 // (`t tx ty tz qx qy qz qw`). Colour and depth are paired with TUM's association rule (associate.py:
 // closer than max_difference, greedy, one-to-one) — the metrics library's own implementation. Depth is
 // 16-bit PNG with depth_factor units per metre (5000), registered to colour by the Kinect driver.
-// Intrinsics come from the `intrinsics` option; `auto` guesses from the folder name (freiburg1/2/3)
-// and says so in a warning.
+// Intrinsics come from the `intrinsics` option; `auto` reads camera.txt when the folder has one (as
+// `vobench synth` writes), else guesses from the folder name (freiburg1/2/3) and says so in a warning.
 #include "tum_lists.hpp"
 
 #include "metrics/association.hpp"
@@ -13,6 +13,7 @@
 
 #include <vobench/plugin.hpp>
 
+#include <nlohmann/json.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -177,6 +178,10 @@ private:
 
     void set_intrinsics(const vobench::sdk::Params& options) {
         std::string which = options.get_string("intrinsics");
+        if (which == "auto" && fs::exists(root_ / "camera.txt")) {
+            read_camera_file(root_ / "camera.txt");
+            return;
+        }
         if (which == "auto") {
             const std::string folder = fs::absolute(root_).lexically_normal().string();
             which = folder.find("freiburg1") != std::string::npos   ? "fr1"
@@ -213,6 +218,42 @@ private:
         bool any = false;
         for (int i = 0; i < camera_.distortion_count; ++i) any = any || camera_.distortion[i] != 0.0;
         camera_.distortion_model = any ? VOBENCH_DISTORTION_OPENCV : VOBENCH_DISTORTION_NONE;
+    }
+
+    // camera.txt (written by `vobench synth`): one line `fx fy cx cy d0 … d7`, '#' comments.
+    void read_camera_file(const fs::path& path) {
+        std::istringstream in(read_text(path));
+        std::string line;
+        std::size_t number = 0;
+        while (std::getline(in, line)) {
+            ++number;
+            if (line.empty() || line[0] == '#') continue;
+            std::istringstream fields(line);
+            std::vector<double> v;
+            double x;
+            while (fields >> x) v.push_back(x);
+            if (!fields.eof() || v.size() < 4 || v.size() > 12)
+                throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(number) +
+                                                  ": expected `fx fy cx cy` and up to 8 distortion coefficients");
+            camera_.fx = v[0];
+            camera_.fy = v[1];
+            camera_.cx = v[2];
+            camera_.cy = v[3];
+            camera_.distortion_count = static_cast<int32_t>(v.size() - 4);
+            for (std::size_t i = 4; i < v.size(); ++i) camera_.distortion[i - 4] = v[i];
+            camera_.distortion_model = v.size() > 4 ? VOBENCH_DISTORTION_OPENCV : VOBENCH_DISTORTION_NONE;
+            sensor_ = "synthetic";
+            // A generated sequence names its sensor model in synth.json.
+            if (fs::exists(root_ / "synth.json")) {
+                try {
+                    sensor_ = nlohmann::json::parse(read_text(root_ / "synth.json")).value("sensor", sensor_);
+                } catch (const nlohmann::json::exception& e) {
+                    throw Error(VOBENCH_IO_ERROR, (root_ / "synth.json").string() + ": " + e.what());
+                }
+            }
+            return;
+        }
+        throw Error(VOBENCH_IO_ERROR, path.string() + ": no intrinsics line");
     }
 
     void prepare_undistortion() {

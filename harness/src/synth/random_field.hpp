@@ -1,0 +1,40 @@
+// random_field.hpp — counter-based randomness: every random number is a hash of (seed, indices), so a
+// value never depends on thread scheduling or evaluation order. Same seed, same bytes.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+
+namespace vobench::synth {
+
+// SplitMix64 finaliser (Steele, Lea & Flood 2014): a strong 64-bit mixer.
+inline uint64_t mix64(uint64_t x) {
+    x += 0x9e3779b97f4a7c15ull;
+    x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ull;
+    x = (x ^ (x >> 27)) * 0x94d049bb133111ebull;
+    return x ^ (x >> 31);
+}
+
+inline uint64_t hash(uint64_t a, uint64_t b) { return mix64(a ^ mix64(b)); }
+inline uint64_t hash(uint64_t a, uint64_t b, uint64_t c) { return hash(hash(a, b), c); }
+inline uint64_t hash(uint64_t a, uint64_t b, uint64_t c, uint64_t d) { return hash(hash(a, b, c), d); }
+
+// Uniform in [0, 1).
+inline double uniform(uint64_t h) { return static_cast<double>(h >> 11) * (1.0 / 9007199254740992.0); }
+
+// Standard normal from one hash (Box–Muller on two halves of the stream).
+inline double gaussian(uint64_t h) {
+    const double u1 = uniform(mix64(h)) + 1e-300;
+    const double u2 = uniform(mix64(h + 0x632be59bd9b4e019ull));
+    return std::sqrt(-2.0 * std::log(u1)) * std::cos(6.283185307179586 * u2);
+}
+
+// Approximately standard normal, cheap: the Irwin–Hall sum of four 16-bit uniforms from one hash,
+// centred and scaled to unit variance (tails end at ±3.46σ). For image noise, where millions are drawn.
+inline double gaussian_fast(uint64_t h) {
+    h = mix64(h);
+    const double sum = static_cast<double>((h & 0xffff) + ((h >> 16) & 0xffff) + ((h >> 32) & 0xffff) + (h >> 48));
+    return (sum / 65536.0 - 2.0) * 1.7320508075688772;  // variance of the sum of 4 U(0,1) is 1/3
+}
+
+}  // namespace vobench::synth

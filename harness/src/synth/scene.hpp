@@ -1,0 +1,65 @@
+// scene.hpp — the synthetic office: axis-aligned boxes in the PUTK² world frame.
+//
+// The world frame is that of PUTK²'s ground truth (the central ceiling camera's frame): x and y span
+// the floor, z points down, the ceiling cameras sit at z = 0. The floor is at z = floor_z. The room
+// is fitted around the trajectory (so real PUTK² ground truth can be rendered too), and furnished
+// with desks, shelves, cabinets, boxes, pillars and posters placed deterministically from a seed,
+// never closer than `clearance` to the path, so that the sensor always sees structure within its
+// 0.5–4.5 m range, as the PUTK² recording room was arranged.
+#pragma once
+
+#include "synth/texture.hpp"
+
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <vector>
+
+namespace vobench::synth {
+
+struct Box {
+    Eigen::Vector3d min, max;
+    int material = 0;     // index into Scene::materials; for the room shell, + face (0..5)
+    bool shell = false;   // the room itself: seen from inside
+};
+
+struct Hit {
+    double t = 0;              // distance along the (unit) ray
+    Eigen::Vector3d point;
+    Eigen::Vector3d normal;    // facing the ray origin
+    int material = -1;
+    double u = 0, v = 0;       // surface coordinates, metres
+};
+
+struct PointLight {
+    Eigen::Vector3d position;
+    double power;
+};
+
+struct Scene {
+    std::vector<Box> boxes;
+    std::vector<Material> materials;
+    std::vector<PointLight> lights;
+    double floor_z = 3.0;
+
+    // Nearest hit of the ray origin + t·dir (dir unit), t in (t_min, t_max); false when none. With
+    // `candidates`, only those boxes are tested (the renderer's per-tile culling).
+    bool intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min, double t_max, Hit& hit,
+                   const std::vector<int>* candidates = nullptr) const;
+    // True when anything blocks the segment from `from` towards `to` (shadow rays).
+    bool occluded(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
+    // Linear RGB radiance seen along a ray that hit `hit`, with pixel footprint (m) for filtering.
+    Eigen::Vector3f shade(const Hit& hit, double footprint) const;
+};
+
+struct OfficeOptions {
+    uint64_t seed = 1;
+    double floor_z = 3.0;     // ceiling cameras 3 m above the floor
+    double clearance = 0.7;   // free radius around the path, metres
+    double margin = 2.0;      // mean distance from the path's bounding box to the walls, metres
+};
+
+// `path_xy`: the positions (x, y) the sensors will visit.
+Scene build_office(const std::vector<Eigen::Vector2d>& path_xy, const OfficeOptions& options);
+
+}  // namespace vobench::synth

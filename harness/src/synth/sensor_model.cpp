@@ -1,0 +1,71 @@
+#include "synth/sensor_model.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace vobench::synth {
+namespace {
+
+Eigen::Isometry3d pose(double x, double y, double z, double qw, double qx, double qy, double qz) {
+    Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+    T.linear() = Eigen::Quaterniond(qw, qx, qy, qz).normalized().toRotationMatrix();
+    T.translation() = Eigen::Vector3d(x, y, z);
+    return T;
+}
+
+}  // namespace
+
+SensorModel kinect1() {
+    SensorModel s;
+    s.name = "kinect1";
+    s.principle = DepthPrinciple::StructuredLight;
+    // PUT calibration of the Kinect v1 colour camera, camData.txt id 00022000 (640×480; ≈62°×48.6°).
+    s.color = {640, 480, 532.77250, 531.85745, 312.23007, 260.11708, 4, {0.16054, -0.24682, 0.00136, 0.00149, 0, 0, 0, 0}};
+    // Depth: 320×240 registered to the colour camera (half the colour resolution), later upsampled to
+    // 640×480 as in the paper. Nominal depth FOV ≈58.5°×46.6° lies inside the colour FOV.
+    s.depth = {320, 240, 532.77250 / 2, 531.85745 / 2, 312.23007 / 2, 260.11708 / 2, 0, {}};
+    s.depth_in_color = Eigen::Isometry3d::Identity();  // registered by the sensor
+    // cameraZnacznikKin1.txt: x y z qw qx qy qz.
+    s.camera_in_marker = pose(-0.11474, -0.18851, -0.078635, 0.5129, -0.48145, -0.49094, 0.51393);
+    s.exposure_s = 0.015;
+    s.color_noise_dn = 2.0;
+    s.lateral_sigma_px = 0.3;
+    return s;
+}
+
+SensorModel kinect2() {
+    SensorModel s;
+    s.name = "kinect2";
+    s.principle = DepthPrinciple::TimeOfFlight;
+    // PUT calibration of the Kinect v2 colour camera, camData.txt id 00033000 (1920×1080; ≈84°×54°).
+    s.color = {1920, 1080, 1078.68499, 1076.474256, 952.6592286, 530.7386644, 8,
+               {0.02712800285, -0.003876435388, -0.0003782667962, -0.002409935964, 0.05862808573, -0.02856023826,
+                0.05860957117, 0.03897302154}};
+    // Depth: 512×424 with ≈70°×60° FOV (fx = fy ≈ 365.5 px); the depth camera sits ≈5.2 cm beside the
+    // colour camera (Kinect v2 hardware; Fankhauser et al. 2015).
+    s.depth = {512, 424, 365.5, 365.5, 255.5, 211.5, 0, {}};
+    s.depth_in_color = Eigen::Isometry3d::Identity();
+    s.depth_in_color.translation() = Eigen::Vector3d(0.052, 0.0, 0.0);
+    // cameraZnacznikKin2.txt.
+    s.camera_in_marker = pose(-0.10337, -0.11498, -0.21916, 0.55845, -0.44014, -0.44003, 0.54844);
+    // The Kinect v2 colour camera lengthens its exposure indoors (it drops to 15 fps in dim light): the
+    // blur that Kraft et al. blame for its RPE peaks at speed.
+    s.exposure_s = 0.033;
+    s.color_noise_dn = 2.5;
+    s.lateral_sigma_px = 0.2;
+    return s;
+}
+
+SensorModel sensor_by_name(const std::string& name) {
+    if (name == "kinect1") return kinect1();
+    if (name == "kinect2") return kinect2();
+    throw std::invalid_argument("unknown sensor '" + name + "' (kinect1 or kinect2)");
+}
+
+double kinect2_sigma_z(double z, double theta) {
+    const double t = std::min(theta, 1.45);  // the fit diverges at grazing incidence
+    const double mm = 1.5 - 0.5 * z + 0.3 * z * z + 0.1 * std::pow(z, 1.5) * t * t / ((M_PI / 2 - t) * (M_PI / 2 - t));
+    return mm * 1e-3;
+}
+
+}  // namespace vobench::synth

@@ -1,0 +1,148 @@
+#include "synth/sequence_writer.hpp"
+
+#include "metrics/trajectory_io.hpp"
+#include "synth/renderer.hpp"
+#include "synth/trajectory_families.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <chrono>
+#include <future>
+
+#ifndef VOBENCH_VERSION
+#define VOBENCH_VERSION "unknown"
+#endif
+
+namespace vobench::synth {
+namespace fs = std::filesystem;
+
+namespace {
+
+struct Paths {
+    metrics::Trajectory marker;  // empty when the input gave camera poses directly
+    metrics::Trajectory camera;  // stamps: seconds
+    Eigen::Isometry3d camera_in_marker = Eigen::Isometry3d::Identity();
+};
+
+Paths load_paths(const SynthOptions& o, const SensorModel& sensor) {
+    Paths p;
+    p.camera_in_marker = sensor.camera_in_marker;
+    if (!o.camera_in_marker.empty()) p.camera_in_marker = metrics::read_camera_in_marker(o.camera_in_marker);
+    if (is_trajectory_family(o.trajectory)) {
+        p.marker = family_trajectory(o.trajectory, o.seed);
+    } else {
+        metrics::ReadOptions ro;
+        ro.format = metrics::parse_trajectory_format(o.trajectory_format);
+        if (!fs::exists(o.trajectory))
+            throw std::invalid_argument("--trajectory: '" + o.trajectory + "' is neither a built-in trajectory (" +
+                                        fmt::format("{}", fmt::join(trajectory_family_names(), ", ")) + ") nor a file");
+        const auto read = metrics::read_trajectory(o.trajectory, ro);
+        if (ro.format == metrics::TrajectoryFormat::Putk2Raw) p.marker = read.poses;
+        else p.camera = read.poses;
+    }
+    if (!p.marker.empty()) {
+        // Kraft et al. 2016, eq. 10: the camera's pose is the marker's pose times camera-in-marker.
+        for (const auto& m : p.marker)
+            p.camera.push_back(metrics::StampedPose::from_isometry(m.t / kFrameRateHz, m.isometry() * p.camera_in_marker));
+    }
+    return p;
+}
+
+std::string rodrigues_line(const metrics::StampedPose& m) {
+    const Eigen::AngleAxisd aa(m.q);
+    const Eigen::Vector3d r = aa.axis() * aa.angle();
+    return fmt::format("{};{};{};{};{};{};{}", static_cast<long long>(m.t), r.x(), r.y(), r.z(), m.p.x(), m.p.y(), m.p.z());
+}
+
+void write_png(const fs::path& path, const cv::Mat& image) {
+    // Fast compression: the files are scratch data; decoding speed is what matters.
+    if (!cv::imwrite(path.string(), image, {cv::IMWRITE_PNG_COMPRESSION, 1}))
+        throw std::runtime_error(path.string() + ": cannot write image");
+}
+
+}  // namespace
+
+SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t, uint64_t)>& progress) {
+    if (o.layout != "tum") throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum)");
+    if (o.out.empty()) throw std::invalid_argument("--out is required");
+    const SensorModel sensor = sensor_by_name(o.sensor);
+    const Paths paths = load_paths(o, sensor);
+    if (paths.camera.size() < 2) throw std::invalid_argument("the trajectory has fewer than two poses");
+    const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, paths.camera.size()) : paths.camera.size();
+
+    // The room is fitted around the whole trajectory (not only the frames rendered), so that a
+    // sequence's first N frames are the first N frames of the full sequence.
+    std::vector<Eigen::Vector2d> xy;
+    for (const auto& c : paths.camera) xy.emplace_back(c.p.x(), c.p.y());
+    OfficeOptions office;
+    office.seed = o.seed;
+    const Scene scene = build_office(xy, office);
+    const Renderer renderer(scene, sensor, o.seed);
+
+    fs::create_directories(o.out / "rgb");
+    fs::create_directories(o.out / "depth");
+    std::string rgb_list = "# color images\n# vobench synth\n# timestamp filename\n";
+    std::string depth_list = "# depth maps\n# vobench synth\n# timestamp filename\n";
+    metrics::Trajectory gt;
+    const auto start = std::chrono::steady_clock::now();
+    std::future<void> pending;  // PNG encoding of frame k overlaps rendering of frame k + 1
+    for (uint64_t k = 0; k < count; ++k) {
+        const auto& pose = paths.camera[k];
+        const auto& next = paths.camera[std::min<uint64_t>(k + 1, paths.camera.size() - 1)];
+        const double interval = next.t - pose.t;
+        RenderedFrame frame = renderer.render(k, pose.isometry(), next.isometry(), interval > 0 ? interval : 0.1, o.blur);
+        const std::string stamp = fmt::format("{:.6f}", pose.t);
+        rgb_list += stamp + " rgb/" + stamp + ".png\n";
+        depth_list += stamp + " depth/" + stamp + ".png\n";
+        metrics::StampedPose g = pose;
+        g.t = std::stod(stamp);  // the stamp exactly as written in the lists
+        gt.push_back(g);
+        if (pending.valid()) pending.get();
+        pending = std::async(std::launch::async, [&o, stamp, frame = std::move(frame)] {
+            cv::Mat depth16;
+            frame.depth.convertTo(depth16, CV_16UC1, 5000.0);  // TUM: 5000 units per metre, rounded
+            write_png(o.out / "rgb" / (stamp + ".png"), frame.color);
+            write_png(o.out / "depth" / (stamp + ".png"), depth16);
+        });
+        if (progress) progress(k + 1, count);
+    }
+    if (pending.valid()) pending.get();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+    metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
+    metrics::write_file_atomic(o.out / "depth.txt", depth_list);
+    metrics::write_tum(o.out / "groundtruth.txt", gt, "vobench synth: camera poses (camera-to-world)");
+    const PinholeCamera& c = sensor.color;
+    metrics::write_file_atomic(o.out / "camera.txt",
+                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
+                                           "{} {} {} {} {}\n",
+                                           c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
+    if (!paths.marker.empty()) {
+        std::string raw;
+        for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
+        metrics::write_file_atomic(o.out / "marker_groundtruth.txt", raw);
+        const Eigen::Quaterniond q(paths.camera_in_marker.linear());
+        const Eigen::Vector3d t = paths.camera_in_marker.translation();
+        metrics::write_file_atomic(o.out / "camera_in_marker.txt",
+                                   fmt::format("# camera pose in the marker frame: x y z qw qx qy qz\n{} {} {} {} {} {} {}\n", t.x(),
+                                               t.y(), t.z(), q.w(), q.x(), q.y(), q.z()));
+    }
+    const nlohmann::json meta{{"generator", "vobench synth"},
+                              {"vobench_version", VOBENCH_VERSION},
+                              {"sensor", sensor.name},
+                              {"trajectory", o.trajectory},
+                              {"frames", count},
+                              {"seed", o.seed},
+                              {"blur", o.blur},
+                              {"layout", o.layout},
+                              {"frame_rate_hz", kFrameRateHz},
+                              {"depth_units_per_metre", 5000},
+                              {"exposure_s", sensor.exposure_s},
+                              {"room_boxes", scene.boxes.size()}};
+    metrics::write_file_atomic(o.out / "synth.json", meta.dump(2) + "\n");
+    return {count, seconds};
+}
+
+}  // namespace vobench::synth

@@ -1,0 +1,42 @@
+// sequence_writer.hpp — `vobench synth`: renders a sequence and writes it in a data set layout.
+//
+// Layout `tum` (read by the tum reader): rgb/<t>.png, depth/<t>.png (16-bit, 5000 units per metre,
+// registered to the colour image: Kinect v2 depth at 1920×1080), rgb.txt, depth.txt, groundtruth.txt
+// (camera poses, TUM convention, full precision), camera.txt (colour intrinsics and distortion), plus
+// marker_groundtruth.txt (PUTK² raw `id;rx;ry;rz;tx;ty;tz`) and camera_in_marker.txt (`x y z qw qx qy
+// qz`) from which groundtruth.txt follows by eq. 10, and synth.json with every parameter used.
+// Stamps are frame / 10 s (PUTK² records at 10 Hz).
+#pragma once
+
+#include "metrics/pose.hpp"
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace vobench::synth {
+
+struct SynthOptions {
+    std::string sensor = "kinect1";
+    std::string trajectory = "explore1";  // a family name, or a file
+    std::string trajectory_format = "putk2-raw";  // for a file: putk2-raw (marker) or tum (camera poses)
+    std::string camera_in_marker;         // putk2-raw file: override the sensor's camera-in-marker pose
+    uint64_t frames = 0;                  // 0: the whole trajectory
+    uint64_t seed = 1;
+    std::string layout = "tum";
+    bool blur = true;
+    std::filesystem::path out;
+};
+
+struct SynthReport {
+    uint64_t frames = 0;
+    double seconds = 0;
+    double fps() const { return seconds > 0 ? static_cast<double>(frames) / seconds : 0.0; }
+};
+
+// Throws std::invalid_argument / std::runtime_error with a message naming the option or file.
+// `progress(done, total)` is called after each frame.
+SynthReport synthesize(const SynthOptions& options, const std::function<void(uint64_t, uint64_t)>& progress = {});
+
+}  // namespace vobench::synth

@@ -1,0 +1,125 @@
+#include "synth/texture.hpp"
+
+#include "synth/random_field.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace vobench::synth {
+namespace {
+
+// How much of a feature of size `size` survives a footprint: 1 when well resolved, 0 below Nyquist.
+float visibility(double size, double footprint) {
+    const double r = size / (2.0 * footprint);
+    return static_cast<float>(std::clamp((r - 0.5) / 1.0, 0.0, 1.0));
+}
+
+double smooth(double t) { return t * t * (3.0 - 2.0 * t); }
+
+// Value noise on the integer lattice, in [-1, 1].
+double value_noise(double x, double y, uint64_t seed) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
+    // One mixing round per lattice corner (large odd multipliers keep neighbouring corners apart).
+    auto corner = [&](int64_t a, int64_t b) {
+        return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^ (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) - 1.0;
+    };
+    const double tx = smooth(x - fx), ty = smooth(y - fy);
+    const double top = corner(ix, iy) + tx * (corner(ix + 1, iy) - corner(ix, iy));
+    const double bottom = corner(ix, iy + 1) + tx * (corner(ix + 1, iy + 1) - corner(ix, iy + 1));
+    return top + ty * (bottom - top);
+}
+
+// Fractal noise whose octaves are dropped as they fall below the footprint.
+double fbm(double u, double v, double base_size, int octaves, double footprint, uint64_t seed) {
+    double sum = 0, amp = 1, size = base_size, norm = 0;
+    for (int k = 0; k < octaves; ++k) {
+        const float vis = visibility(size, footprint);
+        if (vis <= 0) break;
+        sum += amp * vis * value_noise(u / size, v / size, seed + k);
+        norm += amp;
+        amp *= 0.55;
+        size *= 0.5;
+    }
+    return norm > 0 ? sum / norm : 0.0;
+}
+
+Eigen::Vector3f mix(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float t) { return a + (b - a) * t; }
+
+// A dark line of width w on a grid of pitch p, faded by the footprint.
+float grid_line(double x, double pitch, double width, double footprint) {
+    const double d = std::abs(x / pitch - std::round(x / pitch)) * pitch;
+    const float vis = visibility(width, footprint);
+    return d < width * 0.5 ? vis : 0.0f;
+}
+
+Eigen::Vector3f pages(const Material& m, double u, double v, double footprint) {
+    // Printed pages: rows of word-like marks, 2 cm line pitch, inside 21×30 cm sheets.
+    const double su = std::fmod(std::abs(u), 0.25), sv = std::fmod(std::abs(v), 0.34);
+    if (su > 0.21 || sv > 0.30) return m.accent;
+    const double row = std::floor(sv / 0.02);
+    const double in_row = sv - row * 0.02;
+    const float vis = visibility(0.008, footprint);
+    if (in_row > 0.009 || vis <= 0) return mix(m.base, m.base * 0.8f, 1.0f - vis);
+    const double word = std::floor(su / 0.035);
+    const double in_word = su - word * 0.035;
+    const double length = 0.01 + 0.022 * uniform(hash(m.seed, static_cast<uint64_t>(row), static_cast<uint64_t>(word + 1e4)));
+    const bool ink = in_word < length;
+    return ink ? mix(m.base * 0.8f, Eigen::Vector3f(0.08f, 0.08f, 0.1f), vis) : mix(m.base, m.base * 0.8f, 1.0f - vis);
+}
+
+Eigen::Vector3f poster(const Material& m, double u, double v, double footprint) {
+    // Cells of 12 cm, each with a coloured disc or bar on a light ground; large shapes, sharp corners.
+    const double cell = 0.12 * m.scale;
+    const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
+    const uint64_t h = hash(m.seed, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
+    const double lu = u / cell - static_cast<double>(cu) - 0.5, lv = v / cell - static_cast<double>(cv) - 0.5;
+    const Eigen::Vector3f colour(static_cast<float>(uniform(h)), static_cast<float>(uniform(mix64(h))), static_cast<float>(uniform(mix64(h + 1))));
+    const float vis = visibility(cell * 0.5, footprint);
+    bool inside;
+    switch (h % 3) {
+    case 0: inside = lu * lu + lv * lv < 0.12; break;
+    case 1: inside = std::abs(lu) < 0.4 && std::abs(lv) < 0.15; break;
+    default: inside = std::abs(lu) < 0.2 && std::abs(lv) < 0.35; break;
+    }
+    const Eigen::Vector3f ground = m.base;
+    const Eigen::Vector3f mean = 0.75f * ground + 0.25f * colour;
+    return mix(mean, inside ? colour : ground, vis);
+}
+
+}  // namespace
+
+Eigen::Vector3f albedo(const Material& m, double u, double v, double footprint) {
+    switch (m.style) {
+    case TextureStyle::Paint: {
+        // Mottled paint with a fine speckle: plain walls still carry some texture, as real ones do.
+        const double n = fbm(u, v, 0.6 * m.scale, 7, footprint, m.seed);
+        return m.base * static_cast<float>(1.0 + 0.6 * n);
+    }
+    case TextureStyle::Tiles: {
+        const double n = fbm(u, v, 0.3 * m.scale, 5, footprint, m.seed);
+        const float line = std::max(grid_line(u, 0.5 * m.scale, 0.012, footprint), grid_line(v, 0.5 * m.scale, 0.012, footprint));
+        // Each tile its own shade: corners where four tiles meet.
+        const uint64_t tile = hash(m.seed, static_cast<uint64_t>(std::floor(u / (0.5 * m.scale)) + 1e5),
+                                   static_cast<uint64_t>(std::floor(v / (0.5 * m.scale)) + 1e5));
+        const float shade = 0.85f + 0.3f * static_cast<float>(uniform(tile));
+        return mix(m.base * shade * static_cast<float>(1.0 + 0.25 * n), m.accent, line);
+    }
+    case TextureStyle::Wood: {
+        const double n = fbm(u * 0.15, v, 0.08 * m.scale, 5, footprint, m.seed);
+        const double grain = 0.5 + 0.5 * std::sin((v + 0.05 * n) / (0.012 * m.scale));
+        const float vis = visibility(0.012 * m.scale, footprint);
+        const float plank = grid_line(v, 0.15 * m.scale, 0.004, footprint);
+        return mix(mix(m.base, m.accent, static_cast<float>(0.35 * grain * vis + 0.175 * (1 - vis))), m.accent * 0.5f, plank);
+    }
+    case TextureStyle::Pages: return pages(m, u, v, footprint);
+    case TextureStyle::Poster: return poster(m, u, v, footprint);
+    case TextureStyle::Carpet: {
+        const double n = fbm(u, v, 0.05 * m.scale, 4, footprint, m.seed) + 0.5 * fbm(u, v, 0.8, 3, footprint, m.seed + 7);
+        return mix(m.base, m.accent, static_cast<float>(std::clamp(0.5 + 0.8 * n, 0.0, 1.0)));
+    }
+    }
+    return m.base;
+}
+
+}  // namespace vobench::synth
