@@ -4,7 +4,6 @@
 
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/rgbd.hpp>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -233,6 +232,37 @@ void Renderer::render_depth_structured_light(uint64_t frame, const Eigen::Isomet
     cv::resize(out.depth_native, out.depth, cv::Size(sensor_.color.width, sensor_.color.height), 0, 0, cv::INTER_NEAREST);
 }
 
+cv::Mat Renderer::register_to_color(const cv::Mat& depth) const {
+    // Each depth pixel is a small square on the scene: project its 3-D point into the colour camera
+    // (with distortion) and fill the colour pixels its square covers, nearest depth first. The colour
+    // camera samples ~3× finer than the depth camera, so plain point projection (OpenCV's
+    // registerDepth) would leave most colour pixels empty; this is what the Kinect v2 SDK's
+    // "depth in colour space" mapping delivers.
+    const PinholeCamera& d = sensor_.depth;
+    const PinholeCamera& c = sensor_.color;
+    cv::Mat registered(c.height, c.width, CV_32FC1, cv::Scalar(0));
+    const double half = 0.5 * (c.fx / d.fx) + 0.25;
+    for (int v = 0; v < depth.rows; ++v)
+        for (int u = 0; u < depth.cols; ++u) {
+            const float z = depth.at<float>(v, u);
+            if (!(z > 0)) continue;
+            const Eigen::Vector3d X((u - d.cx) / d.fx * z, (v - d.cy) / d.fy * z, z);
+            const Eigen::Vector3d Xc = sensor_.depth_in_color * X;
+            if (Xc.z() <= 0.05) continue;
+            const Eigen::Vector2d p = project(c, Xc);
+            const double h = half * z / Xc.z();
+            const int u0 = std::max(0, static_cast<int>(std::ceil(p.x() - h))), u1 = std::min(c.width - 1, static_cast<int>(std::floor(p.x() + h)));
+            const int v0 = std::max(0, static_cast<int>(std::ceil(p.y() - h))), v1 = std::min(c.height - 1, static_cast<int>(std::floor(p.y() + h)));
+            const float zc = static_cast<float>(Xc.z());
+            for (int y = v0; y <= v1; ++y)
+                for (int x = u0; x <= u1; ++x) {
+                    float& dst = registered.at<float>(y, x);
+                    if (dst == 0 || zc < dst) dst = zc;
+                }
+        }
+    return registered;
+}
+
 void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const {
     // Kinect v2: its own 512×424 camera beside the colour camera; axial noise after Fankhauser et al.
     // (2015); flying pixels mixing fore- and background at discontinuities; isolated dropouts.
@@ -284,16 +314,7 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry
             out.depth_native.at<float>(v, u) = static_cast<float>(noisy.at<float>(v, u) + alpha * (other - z));
         }
     });
-    // Register to the 1920×1080 colour camera (OpenCV contrib rgbd), splatting each depth pixel over
-    // the colour pixels it covers.
-    const cv::Matx33d Kd(sensor_.depth.fx, 0, sensor_.depth.cx, 0, sensor_.depth.fy, sensor_.depth.cy, 0, 0, 1);
-    const cv::Matx33d Kc(sensor_.color.fx, 0, sensor_.color.cx, 0, sensor_.color.fy, sensor_.color.cy, 0, 0, 1);
-    cv::Matx44d Rt;
-    const Eigen::Matrix4d color_from_depth = sensor_.depth_in_color.matrix();
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) Rt(i, j) = color_from_depth(i, j);
-    const cv::Mat dist(1, 8, CV_64F, const_cast<double*>(sensor_.color.distortion.data()));
-    cv::rgbd::registerDepth(Kd, Kc, dist, Rt, out.depth_native, cv::Size(sensor_.color.width, sensor_.color.height), out.depth, true);
+    out.depth = register_to_color(out.depth_native);
 }
 
 }  // namespace vobench::synth

@@ -44,6 +44,8 @@ private:
                       double frame_interval_s, bool blur, RenderedFrame& out) const;
     void render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
+    // Native ToF depth (its own camera) to the colour camera's pixels, z-buffered.
+    cv::Mat register_to_color(const cv::Mat& depth_native) const;
 
     const Scene& scene_;
     SensorModel sensor_;

@@ -106,7 +106,9 @@ double footprint_distance(const Box& b, double x, double y) {
 
 }  // namespace
 
-Scene build_office(const std::vector<Eigen::Vector2d>& path, const OfficeOptions& o) {
+Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOptions& o) {
+    std::vector<Eigen::Vector2d> path;
+    for (const auto& p : poses) path.emplace_back(p.translation().x(), p.translation().y());
     Scene s;
     s.floor_z = o.floor_z;
     Random r(o.seed * 7919 + 17);
@@ -165,7 +167,7 @@ Scene build_office(const std::vector<Eigen::Vector2d>& path, const OfficeOptions
     }
 
     // Furniture along the walls and in the open, rejected where it would block the path.
-    const int attempts = 160;
+    const int attempts = 400;
     for (int k = 0; k < attempts; ++k) {
         const int kind = r.pick(6);  // desk, shelf, cabinet, box stack, pillar, box
         double w, d, h;
@@ -181,7 +183,7 @@ Scene build_office(const std::vector<Eigen::Vector2d>& path, const OfficeOptions
         double cx, cy;
         const bool swap = r.uniform(0, 1) < 0.5;
         if (swap) std::swap(w, d);
-        if (kind != 4 && r.uniform(0, 1) < 0.7) {
+        if (kind != 4 && r.uniform(0, 1) < 0.5) {
             const int wall = r.pick(4);
             cx = wall == 0 ? x0 + w / 2 : wall == 1 ? x1 - w / 2 : r.uniform(x0 + w / 2, x1 - w / 2);
             cy = wall == 2 ? y0 + d / 2 : wall == 3 ? y1 - d / 2 : r.uniform(y0 + d / 2, y1 - d / 2);
@@ -198,7 +200,7 @@ Scene build_office(const std::vector<Eigen::Vector2d>& path, const OfficeOptions
                        b.min.z() < o2.max.z() && b.max.z() > o2.min.z();
         }
         if (overlaps) continue;
-        TextureStyle style = kind == 0 || kind == 1 ? TextureStyle::Wood : kind == 4 ? TextureStyle::Paint
+        TextureStyle style = kind == 0 || kind == 1 ? TextureStyle::Wood : kind == 4 ? TextureStyle::Tiles
                              : kind == 2            ? TextureStyle::Tiles
                                                     : TextureStyle::Carpet;
         add(b.min, b.max, material(r, style, colour(r, 0.4f, 0.75f), colour(r, 0.2f, 0.45f), ++next_seed));
@@ -213,6 +215,42 @@ Scene build_office(const std::vector<Eigen::Vector2d>& path, const OfficeOptions
             for (double z = floor - 0.3; z > floor - h + 0.2; z -= 0.4)
                 add({cx - w / 2 - 0.01, cy - d / 2 - 0.01, z - 0.25}, {cx + w / 2 + 0.01, cy + d / 2 + 0.01, z - 0.02},
                     material(r, TextureStyle::Poster, colour(r, 0.3f, 0.8f), colour(r, 0.2f, 0.9f), ++next_seed));
+        }
+    }
+
+    // Structure in range everywhere along the path.
+    auto in_range_fraction = [&](const Eigen::Isometry3d& pose) {
+        int in = 0, total = 0;
+        for (int i = -4; i <= 4; ++i)
+            for (int j = -3; j <= 3; ++j) {
+                const Eigen::Vector3d dir = pose.linear() * Eigen::Vector3d(0.12 * i, 0.1 * j, 1.0).normalized();
+                Hit h;
+                ++total;
+                if (s.intersect(pose.translation(), dir, 1e-6, 1e3, h) && h.t > 0.5 && h.t < 4.3) ++in;
+            }
+        return static_cast<double>(in) / total;
+    };
+    for (std::size_t k = 0; k < poses.size(); k += 5) {
+        if (in_range_fraction(poses[k]) >= 0.5) continue;
+        Eigen::Vector3d forward = poses[k].linear() * Eigen::Vector3d::UnitZ();
+        forward.z() = 0;
+        if (forward.norm() < 1e-6) continue;
+        forward.normalize();
+        const Eigen::Vector3d side(-forward.y(), forward.x(), 0);
+        const Eigen::Vector3d at = poses[k].translation();
+        bool placed = false;
+        for (double distance : {2.5, 3.2, 1.9}) {
+            for (double lateral : {0.0, 0.8, -0.8, 1.4, -1.4}) {
+                const Eigen::Vector3d c = at + forward * distance + side * lateral;
+                const double w = r.uniform(0.6, 1.0), d = r.uniform(0.4, 0.6), h = r.uniform(1.0, 1.9);
+                Box b{Eigen::Vector3d(c.x() - w / 2, c.y() - d / 2, floor - h), Eigen::Vector3d(c.x() + w / 2, c.y() + d / 2, floor), 0, false};
+                if (b.min.x() < x0 || b.max.x() > x1 || b.min.y() < y0 || b.max.y() > y1 || !clear_of_path(b)) continue;
+                const TextureStyle style = r.uniform(0, 1) < 0.5 ? TextureStyle::Poster : TextureStyle::Tiles;
+                add(b.min, b.max, material(r, style, colour(r, 0.45f, 0.8f), colour(r, 0.15f, 0.4f), ++next_seed));
+                placed = true;
+                break;
+            }
+            if (placed) break;
         }
     }
 

@@ -10,7 +10,7 @@
 
 #include "synth/texture.hpp"
 
-#include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include <cstdint>
 #include <vector>
@@ -56,10 +56,13 @@ struct OfficeOptions {
     uint64_t seed = 1;
     double floor_z = 3.0;     // ceiling cameras 3 m above the floor
     double clearance = 0.7;   // free radius around the path, metres
-    double margin = 2.0;      // mean distance from the path's bounding box to the walls, metres
+    double margin = 1.1;      // mean distance from the path's bounding box to the walls, metres
 };
 
-// `path_xy`: the positions (x, y) the sensors will visit.
-Scene build_office(const std::vector<Eigen::Vector2d>& path_xy, const OfficeOptions& options);
+// `camera_poses`: the camera-to-world poses the sensors will take. After walls and furniture, every
+// 5th pose is checked by casting a coarse fan of rays over the central field of view; where less than
+// half of them meet something within 0.5–4.3 m, a textured cabinet is added ahead (beside the path,
+// never within `clearance` of it), so the depth sensor always has structure in range.
+Scene build_office(const std::vector<Eigen::Isometry3d>& camera_poses, const OfficeOptions& options);
 
 }  // namespace vobench::synth

@@ -74,11 +74,11 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
 
     // The room is fitted around the whole trajectory (not only the frames rendered), so that a
     // sequence's first N frames are the first N frames of the full sequence.
-    std::vector<Eigen::Vector2d> xy;
-    for (const auto& c : paths.camera) xy.emplace_back(c.p.x(), c.p.y());
+    std::vector<Eigen::Isometry3d> poses;
+    for (const auto& c : paths.camera) poses.push_back(c.isometry());
     OfficeOptions office;
     office.seed = o.seed;
-    const Scene scene = build_office(xy, office);
+    const Scene scene = build_office(poses, office);
     const Renderer renderer(scene, sensor, o.seed);
 
     fs::create_directories(o.out / "rgb");

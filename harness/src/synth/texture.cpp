@@ -87,14 +87,34 @@ Eigen::Vector3f poster(const Material& m, double u, double v, double footprint) 
     return mix(mean, inside ? colour : ground, vis);
 }
 
+// Small rectangles (2–7 cm) scattered on a 16 cm lattice, half of the cells occupied; dark or light.
+Eigen::Vector3f marks(const Material& m, double u, double v, double footprint, const Eigen::Vector3f& ground) {
+    const double cell = 0.16;
+    const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
+    const uint64_t h = hash(m.seed ^ 0x5bd1e995ull, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
+    if (uniform(h) < 0.5) return ground;
+    const double w = 0.02 + 0.05 * uniform(mix64(h + 1)), hgt = 0.02 + 0.05 * uniform(mix64(h + 2));
+    const double ou = (cell - w) * uniform(mix64(h + 3)), ov = (cell - hgt) * uniform(mix64(h + 4));
+    const double lu = u - static_cast<double>(cu) * cell - ou, lv = v - static_cast<double>(cv) * cell - ov;
+    const float vis = visibility(std::min(w, hgt), footprint);
+    const float shade = uniform(mix64(h + 5)) < 0.6 ? 0.25f : 1.6f;
+    const Eigen::Vector3f mark = (ground * shade).cwiseMin(Eigen::Vector3f::Ones());
+    const float area = static_cast<float>(w * hgt / (cell * cell));
+    const Eigen::Vector3f mean = ground + (mark - ground) * area;  // what a blurred view averages to
+    const bool inside = lu >= 0 && lu < w && lv >= 0 && lv < hgt;
+    return mix(mean, inside ? mark : ground, vis);
+}
+
 }  // namespace
 
 Eigen::Vector3f albedo(const Material& m, double u, double v, double footprint) {
     switch (m.style) {
     case TextureStyle::Paint: {
-        // Mottled paint with a fine speckle: plain walls still carry some texture, as real ones do.
+        // Mottled paint with labels, switches, scuffs and screw heads: real walls and furniture carry
+        // small high-contrast marks, which is where FAST finds its corners.
         const double n = fbm(u, v, 0.6 * m.scale, 7, footprint, m.seed);
-        return m.base * static_cast<float>(1.0 + 0.6 * n);
+        const Eigen::Vector3f paint = m.base * static_cast<float>(1.0 + 0.6 * n);
+        return marks(m, u, v, footprint, paint);
     }
     case TextureStyle::Tiles: {
         const double n = fbm(u, v, 0.3 * m.scale, 5, footprint, m.seed);

@@ -1,0 +1,67 @@
+#include "dbscan.hpp"
+
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+namespace put_vo {
+
+std::vector<cv::KeyPoint> dbscan_strongest(const std::vector<cv::KeyPoint>& points, double eps, int min_points) {
+    const std::size_t n = points.size();
+    auto key = [eps](float x, float y) {
+        return (static_cast<int64_t>(std::floor(x / eps)) << 32) ^ (static_cast<int64_t>(std::floor(y / eps)) & 0xffffffff);
+    };
+    std::unordered_map<int64_t, std::vector<std::size_t>> grid;
+    for (std::size_t i = 0; i < n; ++i) grid[key(points[i].pt.x, points[i].pt.y)].push_back(i);
+    const double eps2 = eps * eps;
+    auto neighbours = [&](std::size_t i, std::vector<std::size_t>& out) {
+        out.clear();
+        const int64_t cx = static_cast<int64_t>(std::floor(points[i].pt.x / eps)), cy = static_cast<int64_t>(std::floor(points[i].pt.y / eps));
+        for (int64_t dx = -1; dx <= 1; ++dx)
+            for (int64_t dy = -1; dy <= 1; ++dy) {
+                auto it = grid.find(((cx + dx) << 32) ^ ((cy + dy) & 0xffffffff));
+                if (it == grid.end()) continue;
+                for (std::size_t j : it->second) {
+                    const double ddx = points[i].pt.x - points[j].pt.x, ddy = points[i].pt.y - points[j].pt.y;
+                    if (ddx * ddx + ddy * ddy <= eps2) out.push_back(j);
+                }
+            }
+    };
+    constexpr int kUnvisited = -2, kNoise = -1;
+    std::vector<int> label(n, kUnvisited);
+    int clusters = 0;
+    std::vector<std::size_t> seeds, found;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (label[i] != kUnvisited) continue;
+        neighbours(i, found);
+        if (static_cast<int>(found.size()) < min_points) {
+            label[i] = kNoise;
+            continue;
+        }
+        const int c = clusters++;
+        label[i] = c;
+        seeds = found;
+        for (std::size_t k = 0; k < seeds.size(); ++k) {
+            const std::size_t j = seeds[k];
+            if (label[j] == kNoise) label[j] = c;  // border point
+            if (label[j] != kUnvisited) continue;
+            label[j] = c;
+            neighbours(j, found);
+            if (static_cast<int>(found.size()) >= min_points) seeds.insert(seeds.end(), found.begin(), found.end());
+        }
+    }
+    std::vector<int> best(static_cast<std::size_t>(clusters), -1);
+    std::vector<cv::KeyPoint> kept;
+    for (std::size_t i = 0; i < n; ++i) {
+        if (label[i] == kNoise) {
+            kept.push_back(points[i]);
+            continue;
+        }
+        int& b = best[static_cast<std::size_t>(label[i])];
+        if (b < 0 || points[i].response > points[static_cast<std::size_t>(b)].response) b = static_cast<int>(i);
+    }
+    for (int b : best) kept.push_back(points[static_cast<std::size_t>(b)]);
+    return kept;
+}
+
+}  // namespace put_vo

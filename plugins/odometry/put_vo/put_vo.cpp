@@ -1,0 +1,322 @@
+// put_vo — the PUT RGB-D visual odometry (Kraft et al. 2016, §5.1), from the paper's description:
+//   1. ORB key points in a 4×4 grid of overlapping cells, thresholds adapted per cell (grid_detector);
+//   2. DBSCAN over their positions, the strongest of each cluster kept (dbscan);
+//   3. pyramidal Lucas–Kanade tracking from the key frame through the following frames;
+//   4. every n frames, or earlier when tracking thins out, a new key frame; depth associated with
+//      the tracked points (undistorted pixels) gives two 3-D point sets;
+//   5. RANSAC over 3-point samples + Umeyama, adaptive iterations, iterative correction (rigid_ransac);
+//   6. poses chained key frame to key frame.
+// Stages are timed through the host (detection, clustering, tracking, depth_association,
+// estimation) and counters reported per frame. Parameters and their defaults: README.md.
+#include "dbscan.hpp"
+#include "grid_detector.hpp"
+#include "rigid_ransac.hpp"
+
+#include <vobench/plugin.hpp>
+
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <random>
+
+namespace {
+
+using vobench::sdk::Error;
+using vobench::sdk::Host;
+
+class PutVo : public vobench::sdk::Odometry {
+public:
+    static vobench::sdk::PluginInfo info() {
+        return {"put_vo",
+                "1.0.0",
+                "PUT RGB-D VO (Kraft et al. 2016): grid ORB + DBSCAN, pyramidal LK over key frames, 3-point RANSAC + Umeyama.",
+                "MIT",
+                "https://doi.org/10.1007/s00138-016-0802-6",
+                {{"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
+                 {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
+                 {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
+                 {"fast_threshold", VOBENCH_PARAM_INT, "20", 1, 200, "", "initial FAST threshold of every cell"},
+                 {"dbscan_eps", VOBENCH_PARAM_DOUBLE, "5", 0, 100, "", "DBSCAN radius in px at 640 px width (scaled with width)"},
+                 {"dbscan_min_points", VOBENCH_PARAM_INT, "2", 1, 100, "", "DBSCAN minPts"},
+                 {"redetect_below", VOBENCH_PARAM_INT, "100", 0, 5000, "", "detect new features when fewer are tracked"},
+                 {"keyframe_interval", VOBENCH_PARAM_INT, "4", 1, 100, "", "a new key frame every n frames (the paper's n)"},
+                 {"lk_window", VOBENCH_PARAM_INT, "7", 3, 61, "", "Lucas-Kanade window, px (odd)"},
+                 {"lk_levels", VOBENCH_PARAM_INT, "3", 0, 8, "", "Lucas-Kanade pyramid levels above the base"},
+                 {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
+                 {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
+                 {"ransac_threshold", VOBENCH_PARAM_DOUBLE, "0.035", 0.001, 1, "", "RANSAC inlier distance, m"},
+                 {"ransac_probability", VOBENCH_PARAM_DOUBLE, "0.99", 0.5, 0.99999, "", "RANSAC success probability p"},
+                 {"ransac_max_iterations", VOBENCH_PARAM_INT, "1000", 1, 100000, "", "RANSAC iteration cap"},
+                 {"min_inlier_ratio", VOBENCH_PARAM_DOUBLE, "0.25", 0, 1, "", "below this inlier ratio the frame is lost"},
+                 {"min_inliers", VOBENCH_PARAM_INT, "10", 3, 10000, "", "below this inlier count the frame is lost"},
+                 {"depth_min", VOBENCH_PARAM_DOUBLE, "0.1", 0, 100, "", "depth accepted from, m"},
+                 {"depth_max", VOBENCH_PARAM_DOUBLE, "6.0", 0, 100, "", "depth accepted up to, m"},
+                 {"max_translation", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "", "implausible motion from the key frame, m"},
+                 {"max_rotation_deg", VOBENCH_PARAM_DOUBLE, "45", 0, 180, "", "implausible rotation from the key frame, deg"},
+                 {"intermediate_pose", VOBENCH_PARAM_ENUM, "estimate", 0, 0, "estimate|hold",
+                  "frames between key frames: estimate against the key frame, or hold the key frame's pose"}}};
+    }
+
+    void start(const vobench_camera& camera, const vobench::sdk::Params& p, uint64_t seed) override {
+        camera_ = camera;
+        K_ = cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
+        dist_ = cv::Mat(1, std::max(0, camera.distortion_count), CV_64F);
+        for (int i = 0; i < camera.distortion_count; ++i) dist_.at<double>(0, i) = camera.distortion[i];
+        max_features_ = static_cast<int>(p.get_int("max_features"));
+        put_vo::GridDetectorOptions g;
+        g.grid = static_cast<int>(p.get_int("grid"));
+        g.overlap_px = static_cast<int>(p.get_int("cell_overlap"));
+        g.threshold_init = static_cast<int>(p.get_int("fast_threshold"));
+        g.per_cell_target = std::max(4, 2 * max_features_ / (g.grid * g.grid));
+        detector_ = std::make_unique<put_vo::GridDetector>(g);
+        // ε is given for 640 px images; features spread with resolution (Kinect v2: ×3).
+        eps_ = p.get_double("dbscan_eps") * camera.width / 640.0;
+        min_points_ = static_cast<int>(p.get_int("dbscan_min_points"));
+        redetect_below_ = static_cast<int>(p.get_int("redetect_below"));
+        keyframe_interval_ = static_cast<int>(p.get_int("keyframe_interval"));
+        const int w = static_cast<int>(p.get_int("lk_window"));
+        lk_window_ = cv::Size(w, w);
+        lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
+        lk_criteria_ = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, static_cast<int>(p.get_int("lk_iterations")),
+                                        p.get_double("lk_epsilon"));
+        ransac_.inlier_threshold_m = p.get_double("ransac_threshold");
+        ransac_.probability = p.get_double("ransac_probability");
+        ransac_.max_iterations = static_cast<int>(p.get_int("ransac_max_iterations"));
+        min_inlier_ratio_ = p.get_double("min_inlier_ratio");
+        min_inliers_ = static_cast<int>(p.get_int("min_inliers"));
+        depth_min_ = p.get_double("depth_min");
+        depth_max_ = p.get_double("depth_max");
+        max_translation_ = p.get_double("max_translation");
+        max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
+        estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
+        rng_.seed(seed);
+        reset();
+    }
+
+    void reset() override {
+        have_keyframe_ = false;
+        tracked_.clear();
+        keyframe_points_.clear();
+        world_from_keyframe_ = Eigen::Isometry3d::Identity();
+        world_from_current_ = Eigen::Isometry3d::Identity();
+        frames_since_keyframe_ = 0;
+    }
+
+    vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) override {
+        to_gray(*frame.color, gray_);
+        const cv::Mat depth = wrap(*frame.depth);
+        const double depth_scale = frame.depth_scale;
+        {
+            Host::Stage s(host(), "tracking");
+            cv::buildOpticalFlowPyramid(gray_, pyramid_, lk_window_, lk_levels_);
+        }
+        vobench_tracking_status status = VOBENCH_TRACKING_OK;
+        if (!have_keyframe_) {
+            make_keyframe(depth, depth_scale, true);
+        } else {
+            track();
+            ++frames_since_keyframe_;
+            bool keyframe_due = frames_since_keyframe_ >= keyframe_interval_ || static_cast<int>(tracked_.size()) < redetect_below_;
+            if (keyframe_due || estimate_every_frame_) {
+                Eigen::Isometry3d keyframe_from_current;
+                if (estimate(depth, depth_scale, keyframe_from_current)) {
+                    world_from_current_ = world_from_keyframe_ * keyframe_from_current;
+                } else {
+                    status = VOBENCH_TRACKING_LOST;  // keep the last pose; restart from this frame
+                    keyframe_due = true;
+                }
+            }
+            if (keyframe_due) make_keyframe(depth, depth_scale, status == VOBENCH_TRACKING_LOST);
+        }
+        prev_pyramid_.swap(pyramid_);
+        host().counter("features_tracked", static_cast<double>(tracked_.size()));
+        write_pose(world_from_current_, pose);
+        return status;
+    }
+
+private:
+    struct Feature {
+        cv::Point2f position;  // in the current frame (distorted pixels)
+        float response;
+    };
+
+    static cv::Mat wrap(const vobench_image& image) {
+        int type;
+        switch (image.format) {
+        case VOBENCH_PIXEL_RGB8:
+        case VOBENCH_PIXEL_BGR8: type = CV_8UC3; break;
+        case VOBENCH_PIXEL_GRAY8: type = CV_8UC1; break;
+        case VOBENCH_PIXEL_DEPTH_U16: type = CV_16UC1; break;
+        case VOBENCH_PIXEL_DEPTH_F32: type = CV_32FC1; break;
+        default: throw Error(VOBENCH_INVALID_ARGUMENT, "unsupported pixel format " + std::to_string(image.format));
+        }
+        // A header over the borrowed pixels: nothing is copied.
+        return cv::Mat(image.height, image.width, type, const_cast<void*>(image.data), static_cast<std::size_t>(image.stride_bytes));
+    }
+
+    static void to_gray(const vobench_image& image, cv::Mat& gray) {
+        const cv::Mat m = wrap(image);
+        if (image.format == VOBENCH_PIXEL_BGR8) cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+        else if (image.format == VOBENCH_PIXEL_RGB8) cv::cvtColor(m, gray, cv::COLOR_RGB2GRAY);
+        else if (image.format == VOBENCH_PIXEL_GRAY8) m.copyTo(gray);
+        else throw Error(VOBENCH_INVALID_ARGUMENT, "colour image has a depth pixel format");
+    }
+
+    static void write_pose(const Eigen::Isometry3d& T, vobench_pose& pose) {
+        const Eigen::Quaterniond q(T.linear());
+        pose.tx = T.translation().x();
+        pose.ty = T.translation().y();
+        pose.tz = T.translation().z();
+        pose.qx = q.x();
+        pose.qy = q.y();
+        pose.qz = q.z();
+        pose.qw = q.w();
+    }
+
+    // Metric depth at a pixel, or NaN: nearest pixel, rejected on a depth edge (where flying pixels
+    // and holes live) by the spread of its 3×3 neighbourhood.
+    double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p) const {
+        const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
+        if (x < 1 || y < 1 || x >= depth.cols - 1 || y >= depth.rows - 1) return NAN;
+        double lo = 1e9, hi = 0, centre = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                const double d = depth.type() == CV_16UC1 ? depth.at<uint16_t>(y + dy, x + dx) * scale : depth.at<float>(y + dy, x + dx) * scale;
+                if (!(d > 0)) return NAN;
+                lo = std::min(lo, d);
+                hi = std::max(hi, d);
+                if (dx == 0 && dy == 0) centre = d;
+            }
+        if (centre < depth_min_ || centre > depth_max_ || hi - lo > 0.05 * centre) return NAN;
+        return centre;
+    }
+
+    // 3-D points (camera frame) of the given pixels; NaN where depth is missing.
+    std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels) const {
+        std::vector<cv::Point2f> normalised;
+        if (!pixels.empty()) cv::undistortPoints(pixels, normalised, K_, dist_);
+        std::vector<Eigen::Vector3d> points(pixels.size());
+        for (std::size_t i = 0; i < pixels.size(); ++i) {
+            const double z = depth_at(depth, scale, pixels[i]);
+            points[i] = std::isnan(z) ? Eigen::Vector3d::Constant(NAN) : Eigen::Vector3d(normalised[i].x * z, normalised[i].y * z, z);
+        }
+        return points;
+    }
+
+    void track() {
+        Host::Stage s(host(), "tracking");
+        if (tracked_.empty()) return;
+        std::vector<cv::Point2f> from, to;
+        for (const Feature& f : tracked_) from.push_back(f.position);
+        std::vector<uchar> ok;
+        std::vector<float> err;
+        cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_);
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < tracked_.size(); ++i) {
+            if (!ok[i] || to[i].x < 0 || to[i].y < 0 || to[i].x >= gray_.cols || to[i].y >= gray_.rows) continue;
+            tracked_[kept] = tracked_[i];
+            tracked_[kept].position = to[i];
+            keyframe_points_[kept] = keyframe_points_[i];
+            ++kept;
+        }
+        tracked_.resize(kept);
+        keyframe_points_.resize(kept);
+    }
+
+    bool estimate(const cv::Mat& depth, double scale, Eigen::Isometry3d& keyframe_from_current) {
+        std::vector<Eigen::Vector3d> from, to;
+        {
+            Host::Stage s(host(), "depth_association");
+            std::vector<cv::Point2f> pixels;
+            for (const Feature& f : tracked_) pixels.push_back(f.position);
+            const std::vector<Eigen::Vector3d> current = back_project(depth, scale, pixels);
+            for (std::size_t i = 0; i < current.size(); ++i)
+                if (!std::isnan(current[i].x()) && !std::isnan(keyframe_points_[i].x())) {
+                    from.push_back(current[i]);
+                    to.push_back(keyframe_points_[i]);
+                }
+        }
+        Host::Stage s(host(), "estimation");
+        host().counter("correspondences", static_cast<double>(from.size()));
+        if (static_cast<int>(from.size()) < min_inliers_) return false;
+        const put_vo::RansacResult r = put_vo::ransac_rigid(from, to, ransac_, rng_);
+        host().counter("ransac_iterations", r.iterations);
+        host().counter("inliers", static_cast<double>(r.inliers.size()));
+        if (!r.ok || static_cast<int>(r.inliers.size()) < min_inliers_ ||
+            static_cast<double>(r.inliers.size()) < min_inlier_ratio_ * static_cast<double>(from.size()))
+            return false;
+        // Motion plausibility: a robot does not jump.
+        if (r.transform.translation().norm() > max_translation_ || Eigen::AngleAxisd(r.transform.linear()).angle() > max_rotation_)
+            return false;
+        keyframe_from_current = r.transform;
+        return true;
+    }
+
+    // The current frame becomes the key frame; features are topped up when few are left (or all
+    // replaced after a loss).
+    void make_keyframe(const cv::Mat& depth, double scale, bool fresh) {
+        host().counter("keyframe", 1.0);
+        if (fresh) tracked_.clear();
+        world_from_keyframe_ = world_from_current_;
+        frames_since_keyframe_ = 0;
+        have_keyframe_ = true;
+        if (static_cast<int>(tracked_.size()) < redetect_below_ || tracked_.empty()) {
+            std::vector<cv::KeyPoint> keypoints;
+            {
+                Host::Stage s(host(), "detection");
+                keypoints = detector_->detect(gray_);
+            }
+            host().counter("features_detected", static_cast<double>(keypoints.size()));
+            Host::Stage s(host(), "clustering");
+            keypoints = put_vo::dbscan_strongest(keypoints, eps_, min_points_);
+            std::sort(keypoints.begin(), keypoints.end(), [](const cv::KeyPoint& a, const cv::KeyPoint& b) {
+                return a.response != b.response ? a.response > b.response
+                                                : (a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x);  // deterministic order
+            });
+            // Add new features away from those still tracked.
+            const double min_d2 = std::max(4.0, eps_ * eps_);
+            for (const cv::KeyPoint& k : keypoints) {
+                if (static_cast<int>(tracked_.size()) >= max_features_) break;
+                bool near = false;
+                for (const Feature& f : tracked_) {
+                    const double dx = f.position.x - k.pt.x, dy = f.position.y - k.pt.y;
+                    if (dx * dx + dy * dy < min_d2) { near = true; break; }
+                }
+                if (!near) tracked_.push_back({k.pt, k.response});
+            }
+        }
+        Host::Stage s(host(), "depth_association");
+        std::vector<cv::Point2f> pixels;
+        for (const Feature& f : tracked_) pixels.push_back(f.position);
+        keyframe_points_ = back_project(depth, scale, pixels);
+    }
+
+    vobench_camera camera_{};
+    cv::Matx33d K_;
+    cv::Mat dist_;
+    std::unique_ptr<put_vo::GridDetector> detector_;
+    int max_features_ = 500, min_points_ = 2, redetect_below_ = 100, keyframe_interval_ = 4, lk_levels_ = 3, min_inliers_ = 10;
+    double eps_ = 5, min_inlier_ratio_ = 0.25, depth_min_ = 0.1, depth_max_ = 6, max_translation_ = 1, max_rotation_ = 1;
+    bool estimate_every_frame_ = true;
+    cv::Size lk_window_{7, 7};
+    cv::TermCriteria lk_criteria_;
+    put_vo::RansacOptions ransac_;
+    std::mt19937_64 rng_;
+
+    bool have_keyframe_ = false;
+    int frames_since_keyframe_ = 0;
+    cv::Mat gray_;
+    std::vector<cv::Mat> pyramid_, prev_pyramid_;
+    std::vector<Feature> tracked_;
+    std::vector<Eigen::Vector3d> keyframe_points_;  // keyframe-frame 3-D point of each tracked feature
+    Eigen::Isometry3d world_from_keyframe_ = Eigen::Isometry3d::Identity();
+    Eigen::Isometry3d world_from_current_ = Eigen::Isometry3d::Identity();
+};
+
+}  // namespace
+
+VOBENCH_ODOMETRY_PLUGIN(PutVo)
