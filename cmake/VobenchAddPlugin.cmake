@@ -1,13 +1,17 @@
-# vobench_add_plugin(<target> SOURCES <files...> [LINK_LIBRARIES <libs...>] [INSTALL])
+# vobench_add_plugin(<target> SOURCES <files...> [NAME <plugin name>] [LINK_LIBRARIES <libs...>] [INSTALL])
 #
-# Builds a vobench plugin: a MODULE library named vobench_<target>.so that links vobench::sdk,
+# Builds a vobench plugin: a MODULE library named vobench_<name>.so (name defaults to the target; give
+# NAME when the target name would clash, e.g. with an imported library) that links vobench::sdk,
 # compiles with hidden visibility, exports only the entry symbol (linker version script), and is
 # linked with -z defs so that a missing symbol is a link error, not a load-time surprise.
 # Used by the in-tree plugins and, through find_package(vobench), by out-of-tree ones.
 set(_VOBENCH_PLUGIN_MAP "${CMAKE_CURRENT_LIST_DIR}/vobench_plugin.map")
 
 function(vobench_add_plugin target)
-  cmake_parse_arguments(ARG "INSTALL" "" "SOURCES;LINK_LIBRARIES" ${ARGN})
+  cmake_parse_arguments(ARG "INSTALL" "NAME" "SOURCES;LINK_LIBRARIES" ${ARGN})
+  if(NOT ARG_NAME)
+    set(ARG_NAME ${target})
+  endif()
   if(NOT ARG_SOURCES)
     message(FATAL_ERROR "vobench_add_plugin(${target}): SOURCES is required")
   endif()
@@ -18,7 +22,7 @@ function(vobench_add_plugin target)
   endif()
   set_target_properties(${target} PROPERTIES
     PREFIX ""
-    OUTPUT_NAME "vobench_${target}"
+    OUTPUT_NAME "vobench_${ARG_NAME}"
     C_VISIBILITY_PRESET hidden
     CXX_VISIBILITY_PRESET hidden
     VISIBILITY_INLINES_HIDDEN ON

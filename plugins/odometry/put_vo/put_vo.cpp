@@ -42,15 +42,18 @@ public:
                  {"fast_threshold", VOBENCH_PARAM_INT, "20", 1, 200, "", "initial FAST threshold of every cell"},
                  {"dbscan_eps", VOBENCH_PARAM_DOUBLE, "5", 0, 100, "", "DBSCAN radius in px at 640 px width (scaled with width)"},
                  {"dbscan_min_points", VOBENCH_PARAM_INT, "2", 1, 100, "", "DBSCAN minPts"},
-                 {"redetect_below", VOBENCH_PARAM_INT, "100", 0, 5000, "", "detect new features when fewer are tracked"},
+                 {"redetect_below", VOBENCH_PARAM_INT, "150", 0, 5000, "", "detect new features when fewer are tracked"},
                  {"keyframe_interval", VOBENCH_PARAM_INT, "4", 1, 100, "", "a new key frame every n frames (the paper's n)"},
                  {"lk_window", VOBENCH_PARAM_INT, "7", 3, 61, "", "Lucas-Kanade window, px (odd)"},
                  {"lk_levels", VOBENCH_PARAM_INT, "3", 0, 8, "", "Lucas-Kanade pyramid levels above the base"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
+                 {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
+                  "forward-backward check: drop a track that does not return within this many px (0: off)"},
                  {"ransac_threshold", VOBENCH_PARAM_DOUBLE, "0.035", 0.001, 1, "", "RANSAC inlier distance, m"},
                  {"ransac_probability", VOBENCH_PARAM_DOUBLE, "0.99", 0.5, 0.99999, "", "RANSAC success probability p"},
                  {"ransac_max_iterations", VOBENCH_PARAM_INT, "1000", 1, 100000, "", "RANSAC iteration cap"},
+                 {"depth_weighting", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "weight the refinement by 1/z² (depth noise grows with z)"},
                  {"min_inlier_ratio", VOBENCH_PARAM_DOUBLE, "0.25", 0, 1, "", "below this inlier ratio the frame is lost"},
                  {"min_inliers", VOBENCH_PARAM_INT, "10", 3, 10000, "", "below this inlier count the frame is lost"},
                  {"depth_min", VOBENCH_PARAM_DOUBLE, "0.1", 0, 100, "", "depth accepted from, m"},
@@ -81,11 +84,13 @@ public:
         const int w = static_cast<int>(p.get_int("lk_window"));
         lk_window_ = cv::Size(w, w);
         lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
+        lk_fb_threshold_ = p.get_double("lk_fb_threshold");
         lk_criteria_ = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, static_cast<int>(p.get_int("lk_iterations")),
                                         p.get_double("lk_epsilon"));
         ransac_.inlier_threshold_m = p.get_double("ransac_threshold");
         ransac_.probability = p.get_double("ransac_probability");
         ransac_.max_iterations = static_cast<int>(p.get_int("ransac_max_iterations"));
+        ransac_.depth_weighted_refinement = p.get_bool("depth_weighting");
         min_inlier_ratio_ = p.get_double("min_inlier_ratio");
         min_inliers_ = static_cast<int>(p.get_int("min_inliers"));
         depth_min_ = p.get_double("depth_min");
@@ -215,9 +220,19 @@ private:
         std::vector<uchar> ok;
         std::vector<float> err;
         cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_);
+        // Forward-backward consistency (Kalal et al. 2010): a track that does not lead back to where
+        // it started is a mismatch, whatever LK's own status says.
+        std::vector<cv::Point2f> back;
+        std::vector<uchar> back_ok;
+        if (lk_fb_threshold_ > 0) {
+            back = from;
+            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, lk_levels_, lk_criteria_,
+                                     cv::OPTFLOW_USE_INITIAL_FLOW);
+        }
         std::size_t kept = 0;
         for (std::size_t i = 0; i < tracked_.size(); ++i) {
             if (!ok[i] || to[i].x < 0 || to[i].y < 0 || to[i].x >= gray_.cols || to[i].y >= gray_.rows) continue;
+            if (lk_fb_threshold_ > 0 && (!back_ok[i] || cv::norm(back[i] - from[i]) > lk_fb_threshold_)) continue;
             tracked_[kept] = tracked_[i];
             tracked_[kept].position = to[i];
             keyframe_points_[kept] = keyframe_points_[i];
@@ -299,8 +314,8 @@ private:
     cv::Matx33d K_;
     cv::Mat dist_;
     std::unique_ptr<put_vo::GridDetector> detector_;
-    int max_features_ = 500, min_points_ = 2, redetect_below_ = 100, keyframe_interval_ = 4, lk_levels_ = 3, min_inliers_ = 10;
-    double eps_ = 5, min_inlier_ratio_ = 0.25, depth_min_ = 0.1, depth_max_ = 6, max_translation_ = 1, max_rotation_ = 1;
+    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 3, min_inliers_ = 10;
+    double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, depth_min_ = 0.1, depth_max_ = 6, max_translation_ = 1, max_rotation_ = 1;
     bool estimate_every_frame_ = true;
     cv::Size lk_window_{7, 7};
     cv::TermCriteria lk_criteria_;

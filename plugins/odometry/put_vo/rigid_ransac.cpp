@@ -8,18 +8,20 @@
 namespace put_vo {
 
 bool fit_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const std::vector<int>& index,
-               Eigen::Isometry3d& out) {
-    const double n = static_cast<double>(index.size());
+               Eigen::Isometry3d& out, const std::vector<double>* weights) {
     if (index.size() < 3) return false;
+    auto weight = [&](int i) { return weights ? (*weights)[static_cast<std::size_t>(i)] : 1.0; };
+    double n = 0;
     Eigen::Vector3d mf = Eigen::Vector3d::Zero(), mt = Eigen::Vector3d::Zero();
     for (int i : index) {
-        mf += from[static_cast<std::size_t>(i)];
-        mt += to[static_cast<std::size_t>(i)];
+        mf += weight(i) * from[static_cast<std::size_t>(i)];
+        mt += weight(i) * to[static_cast<std::size_t>(i)];
+        n += weight(i);
     }
     mf /= n;
     mt /= n;
     Eigen::Matrix3d sigma = Eigen::Matrix3d::Zero();
-    for (int i : index) sigma += (to[static_cast<std::size_t>(i)] - mt) * (from[static_cast<std::size_t>(i)] - mf).transpose();
+    for (int i : index) sigma += weight(i) * (to[static_cast<std::size_t>(i)] - mt) * (from[static_cast<std::size_t>(i)] - mf).transpose();
     Eigen::JacobiSVD<Eigen::Matrix3d> svd(sigma, Eigen::ComputeFullU | Eigen::ComputeFullV);
     // Degenerate (collinear or coincident points): the second singular value vanishes.
     if (svd.singularValues()(1) < 1e-9 * std::max(1.0, svd.singularValues()(0))) return false;
@@ -69,10 +71,16 @@ RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::v
         needed = denom < 0 ? static_cast<int>(std::ceil(std::log(1.0 - o.probability) / denom)) : o.max_iterations;
     }
     if (!best.ok) return best;
+    std::vector<double> weights;
+    if (o.depth_weighted_refinement)
+        for (std::size_t i = 0; i < from.size(); ++i) {
+            const double z = std::max({from[i].z(), to[i].z(), 0.3});
+            weights.push_back(1.0 / (z * z));
+        }
     // Iterative correction: refit on all inliers, re-classify, until the set is stable.
     for (int r = 0; r < o.refine_iterations; ++r) {
         Eigen::Isometry3d T;
-        if (!fit_rigid(from, to, best.inliers, T)) break;
+        if (!fit_rigid(from, to, best.inliers, T, o.depth_weighted_refinement ? &weights : nullptr)) break;
         std::vector<int> inliers = classify(from, to, T, o.inlier_threshold_m);
         if (inliers.size() < 3) break;
         const bool same = inliers == best.inliers;

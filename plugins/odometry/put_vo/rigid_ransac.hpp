@@ -18,6 +18,10 @@ struct RansacOptions {
     double probability = 0.99;
     int max_iterations = 1000;
     int refine_iterations = 5;
+    // Refinement weights each pair by 1/z² (the depth of its farther point): structured-light and
+    // ToF depth noise grows with distance (σ_z ∝ z² for Kinect v1, Khoshelham & Elberink 2012), so
+    // near points deserve more trust. Sampling stays unweighted, as in the paper.
+    bool depth_weighted_refinement = true;
 };
 
 struct RansacResult {
@@ -31,8 +35,9 @@ struct RansacResult {
 RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to,
                           const RansacOptions& options, std::mt19937_64& rng);
 
-// Least-squares rigid transform (Umeyama) of the indexed pairs; false when degenerate.
+// Least-squares rigid transform (Umeyama) of the indexed pairs; false when degenerate. With weights
+// (one per pair, indexed like `from`), the weighted form: centroids and cross-covariance weighted.
 bool fit_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const std::vector<int>& index,
-               Eigen::Isometry3d& out);
+               Eigen::Isometry3d& out, const std::vector<double>* weights = nullptr);
 
 }  // namespace put_vo
