@@ -1,6 +1,9 @@
 // test_support.hpp — where the tests find data and plugins, and scratch folders.
 #pragma once
 
+#include <vobench/vobench_plugin.h>
+
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -24,6 +27,20 @@ public:
 private:
     std::filesystem::path path_;
 };
+
+// A 1×1 RGB-D frame that owns its pixels, for plugins that do not look at them (test plugins).
+struct TinyFrame {
+    uint16_t depth = 0;
+    uint8_t rgb[3] = {0, 0, 0};
+    vobench_image color{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, rgb};
+    vobench_image depth_image{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &depth};
+    vobench_frame frame{sizeof(vobench_frame), 0, 0.0, 0.0, &color, &depth_image, 0.001};
+    TinyFrame(const TinyFrame&) = delete;  // the frame points into this object
+    TinyFrame() = default;
+};
+
+// A 1×1 pinhole camera to go with it.
+inline const vobench_camera kTinyCamera{sizeof(vobench_camera), 1, 1, 1.0, 1.0, 0.0, 0.0, VOBENCH_DISTORTION_NONE, 0, {0}};
 
 // Runs a shell command, returns its exit status and stdout.
 int run_command(const std::string& command, std::string& out);

@@ -22,17 +22,8 @@ std::string load_error(const std::filesystem::path& path) {
     return "";
 }
 
-// A frame with no pixels worth reading (the counter plugin only looks at the index).
-struct EmptyFrame {
-    uint16_t depth = 0;
-    uint8_t rgb[3] = {0, 0, 0};
-    vobench_image color{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, rgb};
-    vobench_image depth_image{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &depth};
-    vobench_frame frame{sizeof(vobench_frame), 0, 0.0, 0.0, &color, &depth_image, 0.001};
-};
-
 double process_x(OdometryInstance& odo, uint64_t index) {
-    EmptyFrame f;
+    test::TinyFrame f;
     f.frame.index = index;
     vobench_pose pose{};
     pose.struct_size = sizeof(pose);
@@ -41,7 +32,7 @@ double process_x(OdometryInstance& odo, uint64_t index) {
     return pose.tx;
 }
 
-const vobench_camera kCamera{sizeof(vobench_camera), 1, 1, 1.0, 1.0, 0.0, 0.0, VOBENCH_DISTORTION_NONE, 0, {0}};
+const vobench_camera& kCamera = test::kTinyCamera;
 
 }  // namespace
 

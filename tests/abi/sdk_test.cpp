@@ -10,13 +10,9 @@ using Catch::Matchers::Contains;
 
 TEST_CASE("an exception thrown in plugin code becomes an error status with its message", "[sdk]") {
     OdometryInstance odo(PluginLibrary::load(test::fault_plugin("vobench_counter")));
-    const vobench_camera camera{sizeof(vobench_camera), 1, 1, 1, 1, 0, 0, 0, 0, {0}};
-    odo.start(camera, {{"throw_at", "1"}}, 1);
-    uint16_t d = 0;
-    uint8_t c[3] = {};
-    vobench_image ci{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, c};
-    vobench_image di{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &d};
-    vobench_frame frame{sizeof(vobench_frame), 0, 0, 0, &ci, &di, 0.001};
+    odo.start(test::kTinyCamera, {{"throw_at", "1"}}, 1);
+    test::TinyFrame tiny;
+    vobench_frame& frame = tiny.frame;
     vobench_pose pose{};
     pose.struct_size = sizeof(pose);
     vobench_tracking_status tracking;
@@ -28,13 +24,9 @@ TEST_CASE("an exception thrown in plugin code becomes an error status with its m
 
 TEST_CASE("the SDK writes only the pose fields the host's struct covers", "[sdk]") {
     OdometryInstance odo(PluginLibrary::load(test::fault_plugin("vobench_counter")));
-    const vobench_camera camera{sizeof(vobench_camera), 1, 1, 1, 1, 0, 0, 0, 0, {0}};
-    odo.start(camera, {}, 1);
-    uint16_t d = 0;
-    uint8_t c[3] = {};
-    vobench_image ci{sizeof(vobench_image), 1, 1, 3, VOBENCH_PIXEL_RGB8, c};
-    vobench_image di{sizeof(vobench_image), 1, 1, 2, VOBENCH_PIXEL_DEPTH_U16, &d};
-    vobench_frame frame{sizeof(vobench_frame), 0, 0, 0, &ci, &di, 0.001};
+    odo.start(test::kTinyCamera, {}, 1);
+    test::TinyFrame tiny;
+    const vobench_frame& frame = tiny.frame;
     // An older host whose pose ends after tx: the fields past it must stay untouched.
     vobench_pose pose{};
     pose.struct_size = static_cast<uint32_t>(offsetof(vobench_pose, ty));

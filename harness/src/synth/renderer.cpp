@@ -194,32 +194,42 @@ void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const
     });
 }
 
+bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles,
+                              int u, int v, DepthRay& out) const {
+    // Lateral noise: the sampling position jitters by a fraction of a pixel.
+    const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
+    const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
+    Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
+    dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
+    dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
+    dir_cam.normalize();
+    const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
+    const int tiles_x = (depth_rays_.width + kTile - 1) / kTile;
+    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit, &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)]))
+        return false;
+    out.z = out.hit.t * dir_cam.z();
+    out.incidence = std::acos(std::min(1.0, std::abs(out.hit.normal.dot(dir))));
+    return true;
+}
+
 void Renderer::render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const {
     // Kinect v1: depth on a 320×240 grid registered to the colour camera, from disparity against the
     // projector pattern (Khoshelham & Elberink 2012): z = f·b/d, d quantised to 1/8 px with noise.
     const int W = depth_rays_.width, H = depth_rays_.height;
-    const auto tiles = cull(depth_rays_, pose);
-    const int tiles_x = (W + kTile - 1) / kTile;
-    const Eigen::Matrix3d R = pose.linear();
-    const Eigen::Vector3d o = pose.translation();
+    const Eigen::Isometry3d& depth_pose = pose;  // registered: the depth grid is the colour camera's
+    const auto tiles = cull(depth_rays_, depth_pose);
     const Eigen::Vector3d projector = pose * sensor_.projector_in_color;
     const double fb = sensor_.ir_focal_px * sensor_.baseline_m;
-    const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
         for (int u = 0; u < W; ++u) {
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
-            dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
-            dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
-            dir_cam.normalize();
-            const Eigen::Vector3d dir = R * dir_cam;
-            Hit hit;
-            if (!scene_.intersect(o, dir, 1e-6, 1e3, hit, &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)])) continue;
-            const double z = hit.t * dir_cam.z();
+            DepthRay ray;
+            if (!cast_depth_ray(frame, depth_pose, tiles, u, v, ray)) continue;
+            const double z = ray.z;
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
-            const double incidence = std::acos(std::min(1.0, std::abs(hit.normal.dot(dir))));
-            if (incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
+            if (ray.incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
+            const Hit& hit = ray.hit;
             // The projector's shadow: a point the pattern cannot reach has no disparity.
             if (scene_.occluded(hit.point + hit.normal * 1e-4, projector)) continue;
             const double d = fb / z + sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
@@ -269,24 +279,14 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry
     const int W = depth_rays_.width, H = depth_rays_.height;
     const Eigen::Isometry3d depth_pose = pose * sensor_.depth_in_color;
     const auto tiles = cull(depth_rays_, depth_pose);
-    const int tiles_x = (W + kTile - 1) / kTile;
-    const Eigen::Matrix3d R = depth_pose.linear();
-    const Eigen::Vector3d o = depth_pose.translation();
-    const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1), noisy = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
         for (int u = 0; u < W; ++u) {
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
-            dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
-            dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
-            dir_cam.normalize();
-            const Eigen::Vector3d dir = R * dir_cam;
-            Hit hit;
-            if (!scene_.intersect(o, dir, 1e-6, 1e3, hit, &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)])) continue;
-            const double z = hit.t * dir_cam.z();
+            DepthRay ray;
+            if (!cast_depth_ray(frame, depth_pose, tiles, u, v, ray)) continue;
+            const double z = ray.z, incidence = ray.incidence;
             truth.at<float>(v, u) = static_cast<float>(z);
-            const double incidence = std::acos(std::min(1.0, std::abs(hit.normal.dot(dir))));
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
             if (incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
             if (uniform(hash(seed_, kDropout, frame, pixel)) < sensor_.dropout_probability) continue;

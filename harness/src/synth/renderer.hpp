@@ -42,6 +42,14 @@ private:
 
     void render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose,
                       double frame_interval_s, bool blur, RenderedFrame& out) const;
+    struct DepthRay {
+        Hit hit;
+        double z = 0;          // depth along the depth camera's optical axis
+        double incidence = 0;  // angle between ray and surface normal, rad
+    };
+    // One depth pixel's ray, with lateral jitter; false when it hits nothing.
+    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u,
+                        int v, DepthRay& out) const;
     void render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
     // Native ToF depth (its own camera) to the colour camera's pixels, z-buffered.

@@ -21,9 +21,9 @@ SensorModel kinect1() {
     s.principle = DepthPrinciple::StructuredLight;
     // PUT calibration of the Kinect v1 colour camera, camData.txt id 00022000 (640×480; ≈62°×48.6°).
     s.color = {640, 480, 532.77250, 531.85745, 312.23007, 260.11708, 4, {0.16054, -0.24682, 0.00136, 0.00149, 0, 0, 0, 0}};
-    // Depth: 320×240 registered to the colour camera (half the colour resolution), later upsampled to
-    // 640×480 as in the paper. Nominal depth FOV ≈58.5°×46.6° lies inside the colour FOV.
-    s.depth = {320, 240, 532.77250 / 2, 531.85745 / 2, 312.23007 / 2, 260.11708 / 2, 0, {}};
+    // Depth: 320×240 registered to the colour camera (half the colour resolution, same lens
+    // distortion: pixel for pixel on the colour image), later upsampled to 640×480 as in the paper. Nominal depth FOV ≈58.5°×46.6° lies inside the colour FOV.
+    s.depth = {320, 240, 532.77250 / 2, 531.85745 / 2, 312.23007 / 2, 260.11708 / 2, s.color.distortion_count, s.color.distortion};
     s.depth_in_color = Eigen::Isometry3d::Identity();  // registered by the sensor
     // cameraZnacznikKin1.txt: x y z qw qx qy qz.
     s.camera_in_marker = pose(-0.11474, -0.18851, -0.078635, 0.5129, -0.48145, -0.49094, 0.51393);

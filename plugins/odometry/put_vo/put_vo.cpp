@@ -271,43 +271,64 @@ private:
         return true;
     }
 
-    // The current frame becomes the key frame; features are topped up when few are left (or all
-    // replaced after a loss).
+    // The current frame becomes the key frame. Only features with depth here can give a 3-D
+    // correspondence later, so those without are dropped; when fewer than `redetect_below` remain,
+    // new features are detected (after a loss, all are replaced).
     void make_keyframe(const cv::Mat& depth, double scale, bool fresh) {
         host().counter("keyframe", 1.0);
         if (fresh) tracked_.clear();
         world_from_keyframe_ = world_from_current_;
         frames_since_keyframe_ = 0;
         have_keyframe_ = true;
-        if (static_cast<int>(tracked_.size()) < redetect_below_ || tracked_.empty()) {
-            std::vector<cv::KeyPoint> keypoints;
-            {
-                Host::Stage s(host(), "detection");
-                keypoints = detector_->detect(gray_);
-            }
-            host().counter("features_detected", static_cast<double>(keypoints.size()));
+        keyframe_points_.clear();
+        keep_features_with_depth(depth, scale, tracked_, keyframe_points_);
+        if (static_cast<int>(tracked_.size()) >= redetect_below_) return;
+        std::vector<cv::KeyPoint> keypoints;
+        {
+            Host::Stage s(host(), "detection");
+            keypoints = detector_->detect(gray_);
+        }
+        host().counter("features_detected", static_cast<double>(keypoints.size()));
+        std::vector<Feature> added;
+        {
             Host::Stage s(host(), "clustering");
             keypoints = put_vo::dbscan_strongest(keypoints, eps_, min_points_);
             std::sort(keypoints.begin(), keypoints.end(), [](const cv::KeyPoint& a, const cv::KeyPoint& b) {
                 return a.response != b.response ? a.response > b.response
                                                 : (a.pt.y != b.pt.y ? a.pt.y < b.pt.y : a.pt.x < b.pt.x);  // deterministic order
             });
-            // Add new features away from those still tracked.
+            // New features away from those still tracked.
             const double min_d2 = std::max(4.0, eps_ * eps_);
             for (const cv::KeyPoint& k : keypoints) {
-                if (static_cast<int>(tracked_.size()) >= max_features_) break;
+                if (static_cast<int>(tracked_.size() + added.size()) >= max_features_) break;
                 bool near = false;
                 for (const Feature& f : tracked_) {
                     const double dx = f.position.x - k.pt.x, dy = f.position.y - k.pt.y;
                     if (dx * dx + dy * dy < min_d2) { near = true; break; }
                 }
-                if (!near) tracked_.push_back({k.pt, k.response});
+                if (!near) added.push_back({k.pt, k.response});
             }
         }
+        std::vector<Eigen::Vector3d> added_points;
+        keep_features_with_depth(depth, scale, added, added_points);
+        tracked_.insert(tracked_.end(), added.begin(), added.end());
+        keyframe_points_.insert(keyframe_points_.end(), added_points.begin(), added_points.end());
+    }
+
+    // Back-projects `features` and keeps those with valid depth, with their 3-D points.
+    void keep_features_with_depth(const cv::Mat& depth, double scale, std::vector<Feature>& features,
+                                  std::vector<Eigen::Vector3d>& points) const {
         Host::Stage s(host(), "depth_association");
         std::vector<cv::Point2f> pixels;
-        for (const Feature& f : tracked_) pixels.push_back(f.position);
-        keyframe_points_ = back_project(depth, scale, pixels);
+        for (const Feature& f : features) pixels.push_back(f.position);
+        const std::vector<Eigen::Vector3d> all = back_project(depth, scale, pixels);
+        std::size_t kept = 0;
+        for (std::size_t i = 0; i < features.size(); ++i) {
+            if (std::isnan(all[i].x())) continue;
+            features[kept++] = features[i];
+            points.push_back(all[i]);
+        }
+        features.resize(kept);
     }
 
     vobench_camera camera_{};

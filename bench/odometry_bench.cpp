@@ -1,0 +1,133 @@
+// Odometry speed, side by side in one run: put_vo vs OpenCV's RgbdOdometry (opencv_rgbd) on the same
+// frames, already decoded in memory, OpenCV limited to one thread — per frame time inside process().
+// Frames: synthetic Kinect v1 (640×480) and Kinect v2 (1920×1080) sequences rendered first, and the
+// real TUM fr1/rpy sample when ../shared/data is present. Also the renderer's frames/s per sensor.
+#include "abi/instances.hpp"
+#include "abi/plugin_registry.hpp"
+#include "synth/sequence_writer.hpp"
+
+#include <benchmark/benchmark.h>
+#include <opencv2/core.hpp>
+
+#include <filesystem>
+#include <map>
+#include <memory>
+
+using namespace vobench;
+namespace fs = std::filesystem;
+
+namespace {
+
+// A decoded frame that owns its pixels.
+struct OwnedFrame {
+    std::vector<uint8_t> color, depth;
+    vobench_image color_image{}, depth_image{};
+    vobench_frame frame{};
+    explicit OwnedFrame(const vobench_frame& f) {
+        color.assign(static_cast<const uint8_t*>(f.color->data),
+                     static_cast<const uint8_t*>(f.color->data) + static_cast<std::size_t>(f.color->stride_bytes) * f.color->height);
+        depth.assign(static_cast<const uint8_t*>(f.depth->data),
+                     static_cast<const uint8_t*>(f.depth->data) + static_cast<std::size_t>(f.depth->stride_bytes) * f.depth->height);
+        color_image = *f.color;
+        color_image.data = color.data();
+        depth_image = *f.depth;
+        depth_image.data = depth.data();
+        frame = f;
+        frame.color = &color_image;
+        frame.depth = &depth_image;
+    }
+};
+
+struct Sequence {
+    vobench_camera camera{};
+    std::vector<std::unique_ptr<OwnedFrame>> frames;
+};
+
+const PluginRegistry& registry() {
+    static const PluginRegistry r({VOBENCH_PLUGIN_DIR});
+    return r;
+}
+
+Sequence load(const fs::path& path, const ParamMap& options) {
+    DatasetInstance d(registry().find("tum", VOBENCH_KIND_DATASET));
+    d.open(path.string(), options);
+    Sequence s;
+    s.camera = *d.info().camera;
+    for (uint64_t i = 0; i < d.info().frame_count; ++i) s.frames.push_back(std::make_unique<OwnedFrame>(d.read(i)));
+    return s;
+}
+
+const Sequence& sequence(const std::string& name) {
+    static std::map<std::string, Sequence> cache;
+    auto it = cache.find(name);
+    if (it != cache.end()) return it->second;
+    if (name == "tum-fr1-rpy") {
+        const char* env = std::getenv("VOBENCH_DATA_DIR");
+        const fs::path p = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
+        return cache[name] = fs::exists(p) ? load(p, {{"intrinsics", "fr1"}}) : Sequence{};
+    }
+    // "kinect1" / "kinect2": 40 frames of explore1, rendered once per run into the temp folder.
+    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-" + name);
+    if (!fs::exists(dir / "synth.json")) {
+        synth::SynthOptions o;
+        o.sensor = name;
+        o.trajectory = "explore1";
+        o.frames = 40;
+        o.out = dir;
+        synth::synthesize(o);
+    }
+    return cache[name] = load(dir, {});
+}
+
+void run_odometry(benchmark::State& state, const std::string& plugin, const std::string& data) {
+    cv::setNumThreads(1);  // one core, as the targets are stated
+    const Sequence& s = sequence(data);
+    if (s.frames.empty()) {
+        state.SkipWithError("data absent");
+        return;
+    }
+    OdometryInstance odo(registry().find(plugin, VOBENCH_KIND_ODOMETRY));
+    odo.start(s.camera, {}, 1);
+    std::size_t k = 0;
+    vobench_pose pose{};
+    pose.struct_size = sizeof(pose);
+    vobench_tracking_status tracking;
+    for (auto _ : state) {
+        if (k == s.frames.size()) {  // start the sequence over, outside the timing
+            state.PauseTiming();
+            odo.reset();
+            k = 0;
+            state.ResumeTiming();
+        }
+        if (odo.process(s.frames[k++]->frame, pose, tracking) != VOBENCH_OK) state.SkipWithError(odo.last_error().c_str());
+    }
+    state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+void run_synth(benchmark::State& state, const std::string& sensor) {
+    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-synth-" + sensor);
+    uint64_t frames = 0;
+    for (auto _ : state) {
+        synth::SynthOptions o;
+        o.sensor = sensor;
+        o.trajectory = "explore1";
+        o.frames = 4;
+        o.out = dir;
+        frames += synth::synthesize(o).frames;
+    }
+    state.counters["frames_per_s"] = benchmark::Counter(static_cast<double>(frames), benchmark::Counter::kIsRate);
+    fs::remove_all(dir);
+}
+
+}  // namespace
+
+BENCHMARK_CAPTURE(run_odometry, put_vo/kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo/kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/kinect2_1920x1080, "opencv_rgbd", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo/tum_fr1_rpy, "put_vo", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/tum_fr1_rpy, "opencv_rgbd", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_synth, kinect1, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK_CAPTURE(run_synth, kinect2, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+BENCHMARK_MAIN();

@@ -1,0 +1,98 @@
+// put_vo against real data (TUM fr1/rpy) and the synthetic Kinect v1/v2 sequences.
+#include "run/track.hpp"
+#include "synth/sequence_writer.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace vobench;
+
+namespace {
+
+TrackResult track(const std::string& path, const std::string& algorithm, const ParamMap& options = {}) {
+    TrackOptions o;
+    o.dataset = "tum";
+    o.path = path;
+    o.dataset_options = options;
+    o.algorithm = algorithm;
+    o.seed = 1;
+    return run_track(o, PluginRegistry({VOBENCH_PLUGIN_DIR}));
+}
+
+}  // namespace
+
+TEST_CASE("put_vo tracks every frame of fr1/rpy, within 1.5× of OpenCV RgbdOdometry's RPE", "[put_vo][reference]") {
+    VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
+    const TrackResult put = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}});
+    const TrackResult cv = track(dir.string(), "opencv_rgbd", {{"intrinsics", "fr1"}});
+    REQUIRE(put.error.empty());
+    REQUIRE(put.evaluation);
+    REQUIRE(cv.evaluation);
+    CHECK(put.frames.size() == 90);
+    CHECK(put.failed_frames == 0);
+    const double ratio = put.evaluation->rpe->trans.rmse / cv.evaluation->rpe->trans.rmse;
+    INFO("RPE put_vo " << put.evaluation->rpe->trans.rmse << " m, RgbdOdometry " << cv.evaluation->rpe->trans.rmse << " m");
+    CHECK(ratio <= 1.5);
+}
+
+TEST_CASE("put_vo is deterministic: same input and seed, bit-identical trajectory", "[put_vo][determinism]") {
+    VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
+    const TrackResult a = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}});
+    const TrackResult b = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}});
+    REQUIRE(a.estimate.size() == b.estimate.size());
+    for (std::size_t k = 0; k < a.estimate.size(); ++k) {
+        CHECK(a.estimate[k].p == b.estimate[k].p);
+        CHECK(a.estimate[k].q.coeffs() == b.estimate[k].q.coeffs());
+    }
+}
+
+TEST_CASE("put_vo on sim-PUTK² explore1: below the paper's Table 5 RPE, Kinect v2 better than v1", "[put_vo][synth]") {
+    test::TempDir tmp;
+    double ate[2], rpe[2];
+    const char* sensors[2] = {"kinect1", "kinect2"};
+    for (int s = 0; s < 2; ++s) {
+        synth::SynthOptions o;
+        o.sensor = sensors[s];
+        o.trajectory = "explore1";
+        o.frames = 40;
+        o.out = tmp.path() / sensors[s];
+        synth::synthesize(o);
+        const TrackResult r = track(o.out.string(), "put_vo");
+        REQUIRE(r.evaluation);
+        CHECK(r.failed_frames == 0);
+        ate[s] = r.evaluation->ate->stats.rmse;
+        rpe[s] = r.evaluation->rpe->trans.rmse;
+    }
+    INFO("Kinect v1: ATE " << ate[0] << " RPE " << rpe[0] << "; Kinect v2: ATE " << ate[1] << " RPE " << rpe[1]);
+    CHECK(rpe[0] <= 0.017);  // Kraft et al. Table 5, Kinect v1
+    CHECK(rpe[1] <= 0.011);  // Kinect v2
+    CHECK(ate[1] < ate[0]);
+}
+
+// Long (label `long`, `make test-long`): the four exploration paths, 150 frames each, both sensors.
+TEST_CASE("put_vo on the four sim-PUTK² exploration paths (Table 5 targets)", "[.long][put_vo][synth]") {
+    test::TempDir tmp;
+    int v2_better = 0;
+    for (const char* path : {"explore1", "explore2", "explore3", "explore4"}) {
+        double ate[2], rpe[2];
+        const char* sensors[2] = {"kinect1", "kinect2"};
+        for (int s = 0; s < 2; ++s) {
+            synth::SynthOptions o;
+            o.sensor = sensors[s];
+            o.trajectory = path;
+            o.frames = 150;
+            o.out = tmp.path() / (std::string(path) + sensors[s]);
+            synth::synthesize(o);
+            const TrackResult r = track(o.out.string(), "put_vo");
+            REQUIRE(r.evaluation);
+            ate[s] = r.evaluation->ate->stats.rmse;
+            rpe[s] = r.evaluation->rpe->trans.rmse;
+            WARN(path << " " << sensors[s] << ": ATE " << ate[s] << " m, RPE " << rpe[s] << " m, lost " << r.failed_frames
+                      << ", " << r.mean_ms() << " ms/frame");
+        }
+        CHECK(rpe[0] <= 0.017);
+        CHECK(rpe[1] <= 0.011);
+        v2_better += ate[1] < ate[0];
+    }
+    CHECK(v2_better >= 3);
+}
