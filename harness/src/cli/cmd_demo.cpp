@@ -4,6 +4,7 @@
 // comparison in the layout of Table 5 of Kraft et al. (2016).
 #include "cli/commands.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "run/demo_config.hpp"
 #include "run/track.hpp"
 #include "synth/sequence_writer.hpp"
 
@@ -20,10 +21,6 @@ namespace vobench::cli {
 namespace fs = std::filesystem;
 
 namespace {
-
-struct DemoSequence {
-    std::string sensor, trajectory;
-};
 
 // Renders a sequence unless an identical one (same synth.json parameters) is cached.
 fs::path ensure_sequence(const fs::path& root, const DemoSequence& s, uint64_t frames, uint64_t seed) {
@@ -50,33 +47,37 @@ fs::path ensure_sequence(const fs::path& root, const DemoSequence& s, uint64_t f
 
 void add_demo_command(CLI::App& app, int& exit_code) {
     auto* c = app.add_subcommand("demo", "The main job on embedded synthetic Kinect v1/v2 data (what `make demo` runs)");
-    static std::string data = "datasets/synthetic", out = "results/demo";
-    static uint64_t frames = 50, seed = 1;
-    static std::vector<std::string> algorithms = {"put_vo", "opencv_rgbd", "constant_pose"};
-    c->add_option("--data", data, "Where the synthetic sequences are cached")->capture_default_str();
-    c->add_option("--out", out, "Output folder")->capture_default_str();
-    c->add_option("--frames", frames, "Frames per sequence")->capture_default_str();
-    c->add_option("--seed", seed, "Seed of scenes and noise")->capture_default_str();
-    c->add_option("--algorithm", algorithms, "Odometry plugins to compare")->capture_default_str();
+    static std::string config_file = "configs/quickstart.yaml", data, out;
+    static uint64_t frames = 0;
+    c->add_option("--config", config_file, "Demo configuration (YAML)")->capture_default_str();
+    c->add_option("--data", data, "Override: where the synthetic sequences are cached");
+    c->add_option("--out", out, "Override: output folder");
+    c->add_option("--frames", frames, "Override: frames per sequence");
     c->callback([&exit_code] {
-        const std::vector<DemoSequence> sequences = {
-            {"kinect1", "explore1"}, {"kinect2", "explore1"}, {"kinect1", "speed3"}, {"kinect2", "speed3"}};
         const PluginRegistry registry;
+        DemoConfig config = load_demo_config(config_file, registry);  // everything checked before running
+        if (!data.empty()) config.data = data;
+        if (!out.empty()) config.output = out;
+        if (frames > 0) config.frames = frames;
+        const uint64_t seed = config.seed;
         std::ostringstream table;
         table << "| sequence | sensor | algorithm | ATE RMSE [m] | ATE std [m] | RPE RMSE [m] | RPE RMSE [°] | ms/frame | lost |\n"
               << "|---|---|---|---:|---:|---:|---:|---:|---:|\n";
         nlohmann::json rows = nlohmann::json::array();
         bool any_error = false;
-        for (const DemoSequence& s : sequences) {
-            const fs::path dir = ensure_sequence(data, s, frames, seed);
-            for (const std::string& algorithm : algorithms) {
+        const fs::path out_dir = config.output;
+        for (const DemoSequence& s : config.sequences) {
+            const fs::path dir = ensure_sequence(config.data, s, config.frames, seed);
+            for (const DemoAlgorithm& a : config.algorithms) {
+                const std::string& algorithm = a.plugin;
                 TrackOptions t;
                 t.dataset = "tum";
                 t.path = dir.string();
                 t.algorithm = algorithm;
+                t.params = a.params;
                 t.seed = seed;
                 const TrackResult r = run_track(t, registry);
-                const fs::path run_dir = fs::path(out) / fmt::format("{}-{}", s.trajectory, s.sensor) / algorithm;
+                const fs::path run_dir = out_dir / fmt::format("{}-{}", s.trajectory, s.sensor) / algorithm;
                 write_track_outputs(r, run_dir);
                 if (!r.error.empty()) {
                     spdlog::error("{}", r.error);
@@ -97,16 +98,16 @@ void add_demo_command(CLI::App& app, int& exit_code) {
                 rows.push_back(row);
             }
         }
-        fs::create_directories(out);
+        fs::create_directories(out_dir);
         const std::string header = fmt::format(
             "# vobench demo: Kinect v1 vs v2 on synthetic sim-PUTK² sequences\n\n"
             "{} frames per sequence at 10 Hz, seed {}. ATE after se3 alignment; RPE at Δ = 4 frames (paper protocol,\n"
             "Kraft et al. 2016 eqs. 11–12). ms/frame is the time inside the plugin's process call only.\n\n",
-            frames, seed);
-        metrics::write_file_atomic(fs::path(out) / "summary.md", header + table.str());
-        metrics::write_file_atomic(fs::path(out) / "summary.json", rows.dump(2) + "\n");
-        std::cout << "\n" << header << table.str() << "\nWritten: " << (fs::path(out) / "summary.md").string() << " and one folder per run under "
-                  << out << "\n";
+            config.frames, seed);
+        metrics::write_file_atomic(out_dir / "summary.md", header + table.str());
+        metrics::write_file_atomic(out_dir / "summary.json", rows.dump(2) + "\n");
+        std::cout << "\n" << header << table.str() << "\nWritten: " << (out_dir / "summary.md").string() << " and one folder per run under "
+                  << out_dir.string() << "\n";
         exit_code = any_error ? 1 : 0;
     });
 }
