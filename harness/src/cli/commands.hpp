@@ -17,6 +17,7 @@ void add_traj_command(CLI::App& app, int& exit_code);
 void add_data_command(CLI::App& app, int& exit_code);
 void add_synth_command(CLI::App& app, int& exit_code);
 void add_demo_command(CLI::App& app, int& exit_code);
+void add_new_plugin_command(CLI::App& app, int& exit_code);
 
 // "k=v" items into a map; throws CLI::ValidationError naming the bad item.
 std::map<std::string, std::string> parse_key_values(const std::vector<std::string>& items, const std::string& option);

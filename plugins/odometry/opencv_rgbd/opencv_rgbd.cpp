@@ -6,6 +6,8 @@
 // OpenCV's Rt maps points of the previous frame into the current one, so the pose chains as
 // world_from_current = world_from_previous · Rt⁻¹. Images are used as delivered (OpenCV's odometry
 // assumes a pinhole camera; lens distortion is ignored, as OpenCV's samples do).
+#include "rgbd_frame.hpp"  // plugins/common
+
 #include <vobench/plugin.hpp>
 
 #include <opencv2/imgproc.hpp>
@@ -15,7 +17,6 @@
 
 namespace {
 
-using vobench::sdk::Error;
 using vobench::sdk::Host;
 
 class OpenCvRgbd : public vobench::sdk::Odometry {
@@ -71,33 +72,15 @@ public:
             }
         }
         previous_ = current;
-        const Eigen::Quaterniond q(world_from_current_.linear());
-        pose.tx = world_from_current_.translation().x();
-        pose.ty = world_from_current_.translation().y();
-        pose.tz = world_from_current_.translation().z();
-        pose.qx = q.x();
-        pose.qy = q.y();
-        pose.qz = q.z();
-        pose.qw = q.w();
+        vobench::rgbd::write_pose(world_from_current_, pose);
         return status;
     }
 
 private:
     static cv::Ptr<cv::rgbd::OdometryFrame> make_frame(const vobench_frame& frame) {
-        const vobench_image& c = *frame.color;
-        const vobench_image& d = *frame.depth;
-        cv::Mat gray;
-        if (c.format == VOBENCH_PIXEL_GRAY8) gray = cv::Mat(c.height, c.width, CV_8UC1, const_cast<void*>(c.data), static_cast<std::size_t>(c.stride_bytes)).clone();
-        else if (c.format == VOBENCH_PIXEL_BGR8 || c.format == VOBENCH_PIXEL_RGB8)
-            cv::cvtColor(cv::Mat(c.height, c.width, CV_8UC3, const_cast<void*>(c.data), static_cast<std::size_t>(c.stride_bytes)), gray,
-                         c.format == VOBENCH_PIXEL_BGR8 ? cv::COLOR_BGR2GRAY : cv::COLOR_RGB2GRAY);
-        else throw Error(VOBENCH_INVALID_ARGUMENT, "unsupported colour format");
-        cv::Mat depth;
-        if (d.format == VOBENCH_PIXEL_DEPTH_U16)
-            cv::Mat(d.height, d.width, CV_16UC1, const_cast<void*>(d.data), static_cast<std::size_t>(d.stride_bytes)).convertTo(depth, CV_32F, frame.depth_scale);
-        else if (d.format == VOBENCH_PIXEL_DEPTH_F32)
-            cv::Mat(d.height, d.width, CV_32FC1, const_cast<void*>(d.data), static_cast<std::size_t>(d.stride_bytes)).convertTo(depth, CV_32F, frame.depth_scale);
-        else throw Error(VOBENCH_INVALID_ARGUMENT, "unsupported depth format");
+        cv::Mat gray, depth;
+        vobench::rgbd::to_gray(*frame.color, gray);
+        vobench::rgbd::wrap(*frame.depth).convertTo(depth, CV_32F, frame.depth_scale);  // metres
         depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0);  // OpenCV: NaN marks no reading
         return cv::makePtr<cv::rgbd::OdometryFrame>(gray, depth);
     }

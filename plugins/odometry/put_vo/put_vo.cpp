@@ -10,7 +10,8 @@
 // estimation) and counters reported per frame. Parameters and their defaults: README.md.
 #include "dbscan.hpp"
 #include "grid_detector.hpp"
-#include "rigid_ransac.hpp"
+#include "rgbd_frame.hpp"    // plugins/common
+#include "rigid_ransac.hpp"  // plugins/common
 
 #include <vobench/plugin.hpp>
 
@@ -66,9 +67,8 @@ public:
 
     void start(const vobench_camera& camera, const vobench::sdk::Params& p, uint64_t seed) override {
         camera_ = camera;
-        K_ = cv::Matx33d(camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
-        dist_ = cv::Mat(1, std::max(0, camera.distortion_count), CV_64F);
-        for (int i = 0; i < camera.distortion_count; ++i) dist_.at<double>(0, i) = camera.distortion[i];
+        K_ = vobench::rgbd::camera_matrix(camera);
+        dist_ = vobench::rgbd::distortion_of(camera);
         max_features_ = static_cast<int>(p.get_int("max_features"));
         put_vo::GridDetectorOptions g;
         g.grid = static_cast<int>(p.get_int("grid"));
@@ -93,8 +93,7 @@ public:
         ransac_.depth_weighted_refinement = p.get_bool("depth_weighting");
         min_inlier_ratio_ = p.get_double("min_inlier_ratio");
         min_inliers_ = static_cast<int>(p.get_int("min_inliers"));
-        depth_min_ = p.get_double("depth_min");
-        depth_max_ = p.get_double("depth_max");
+        depth_range_ = {p.get_double("depth_min"), p.get_double("depth_max")};
         max_translation_ = p.get_double("max_translation");
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
@@ -112,8 +111,8 @@ public:
     }
 
     vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) override {
-        to_gray(*frame.color, gray_);
-        const cv::Mat depth = wrap(*frame.depth);
+        vobench::rgbd::to_gray(*frame.color, gray_);
+        const cv::Mat depth = vobench::rgbd::wrap(*frame.depth);
         const double depth_scale = frame.depth_scale;
         {
             Host::Stage s(host(), "tracking");
@@ -139,7 +138,7 @@ public:
         }
         prev_pyramid_.swap(pyramid_);
         host().counter("features_tracked", static_cast<double>(tracked_.size()));
-        write_pose(world_from_current_, pose);
+        vobench::rgbd::write_pose(world_from_current_, pose);
         return status;
     }
 
@@ -149,67 +148,8 @@ private:
         float response;
     };
 
-    static cv::Mat wrap(const vobench_image& image) {
-        int type;
-        switch (image.format) {
-        case VOBENCH_PIXEL_RGB8:
-        case VOBENCH_PIXEL_BGR8: type = CV_8UC3; break;
-        case VOBENCH_PIXEL_GRAY8: type = CV_8UC1; break;
-        case VOBENCH_PIXEL_DEPTH_U16: type = CV_16UC1; break;
-        case VOBENCH_PIXEL_DEPTH_F32: type = CV_32FC1; break;
-        default: throw Error(VOBENCH_INVALID_ARGUMENT, "unsupported pixel format " + std::to_string(image.format));
-        }
-        // A header over the borrowed pixels: nothing is copied.
-        return cv::Mat(image.height, image.width, type, const_cast<void*>(image.data), static_cast<std::size_t>(image.stride_bytes));
-    }
-
-    static void to_gray(const vobench_image& image, cv::Mat& gray) {
-        const cv::Mat m = wrap(image);
-        if (image.format == VOBENCH_PIXEL_BGR8) cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-        else if (image.format == VOBENCH_PIXEL_RGB8) cv::cvtColor(m, gray, cv::COLOR_RGB2GRAY);
-        else if (image.format == VOBENCH_PIXEL_GRAY8) m.copyTo(gray);
-        else throw Error(VOBENCH_INVALID_ARGUMENT, "colour image has a depth pixel format");
-    }
-
-    static void write_pose(const Eigen::Isometry3d& T, vobench_pose& pose) {
-        const Eigen::Quaterniond q(T.linear());
-        pose.tx = T.translation().x();
-        pose.ty = T.translation().y();
-        pose.tz = T.translation().z();
-        pose.qx = q.x();
-        pose.qy = q.y();
-        pose.qz = q.z();
-        pose.qw = q.w();
-    }
-
-    // Metric depth at a pixel, or NaN: nearest pixel, rejected on a depth edge (where flying pixels
-    // and holes live) by the spread of its 3×3 neighbourhood.
-    double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p) const {
-        const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
-        if (x < 1 || y < 1 || x >= depth.cols - 1 || y >= depth.rows - 1) return NAN;
-        double lo = 1e9, hi = 0, centre = 0;
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx) {
-                const double d = depth.type() == CV_16UC1 ? depth.at<uint16_t>(y + dy, x + dx) * scale : depth.at<float>(y + dy, x + dx) * scale;
-                if (!(d > 0)) return NAN;
-                lo = std::min(lo, d);
-                hi = std::max(hi, d);
-                if (dx == 0 && dy == 0) centre = d;
-            }
-        if (centre < depth_min_ || centre > depth_max_ || hi - lo > 0.05 * centre) return NAN;
-        return centre;
-    }
-
-    // 3-D points (camera frame) of the given pixels; NaN where depth is missing.
     std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels) const {
-        std::vector<cv::Point2f> normalised;
-        if (!pixels.empty()) cv::undistortPoints(pixels, normalised, K_, dist_);
-        std::vector<Eigen::Vector3d> points(pixels.size());
-        for (std::size_t i = 0; i < pixels.size(); ++i) {
-            const double z = depth_at(depth, scale, pixels[i]);
-            points[i] = std::isnan(z) ? Eigen::Vector3d::Constant(NAN) : Eigen::Vector3d(normalised[i].x * z, normalised[i].y * z, z);
-        }
-        return points;
+        return vobench::rgbd::back_project(depth, scale, pixels, K_, dist_, depth_range_);
     }
 
     void track() {
@@ -261,7 +201,7 @@ private:
         Host::Stage s(host(), "estimation");
         host().counter("correspondences", static_cast<double>(from.size()));
         if (static_cast<int>(from.size()) < min_inliers_) return false;
-        const put_vo::RansacResult r = put_vo::ransac_rigid(from, to, ransac_, rng_);
+        const vobench::rigid::RansacResult r = vobench::rigid::ransac_rigid(from, to, ransac_, rng_);
         host().counter("ransac_iterations", r.iterations);
         host().counter("inliers", static_cast<double>(r.inliers.size()));
         if (!r.ok || static_cast<int>(r.inliers.size()) < min_inliers_ ||
@@ -339,11 +279,12 @@ private:
     cv::Mat dist_;
     std::unique_ptr<put_vo::GridDetector> detector_;
     int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 3, min_inliers_ = 10;
-    double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, depth_min_ = 0.1, depth_max_ = 6, max_translation_ = 1, max_rotation_ = 1;
+    double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
+    vobench::rgbd::DepthRange depth_range_;
     bool estimate_every_frame_ = true;
     cv::Size lk_window_{7, 7};
     cv::TermCriteria lk_criteria_;
-    put_vo::RansacOptions ransac_;
+    vobench::rigid::RansacOptions ransac_;
     std::mt19937_64 rng_;
 
     bool have_keyframe_ = false;

@@ -11,7 +11,7 @@
 #include <random>
 #include <vector>
 
-namespace put_vo {
+namespace vobench::rigid {
 
 struct RansacOptions {
     double inlier_threshold_m = 0.035;
@@ -40,4 +40,4 @@ RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::v
 bool fit_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const std::vector<int>& index,
                Eigen::Isometry3d& out, const std::vector<double>* weights = nullptr);
 
-}  // namespace put_vo
+}  // namespace vobench::rigid

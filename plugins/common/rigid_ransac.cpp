@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace put_vo {
+namespace vobench::rigid {
 
 bool fit_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const std::vector<int>& index,
                Eigen::Isometry3d& out, const std::vector<double>* weights) {
@@ -91,4 +91,4 @@ RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::v
     return best;
 }
 
-}  // namespace put_vo
+}  // namespace vobench::rigid
