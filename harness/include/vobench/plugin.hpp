@@ -337,33 +337,66 @@ struct Instance {
     std::string error;
 };
 
-template <typename Impl>
-struct OdometryBridge {
+// What both bridges share: the instance handle, creation, the error message, destruction, and the
+// static descriptor built once from Impl::info().
+template <typename Impl, typename Handle, vobench_plugin_kind Kind>
+struct BridgeBase {
     using Self = Instance<Impl>;
-    static Self* self(vobench_odometry* h) { return reinterpret_cast<Self*>(h); }
+    static Self* self(Handle* h) { return reinterpret_cast<Self*>(h); }
 
-    static vobench_odometry* create(const vobench_host_services* host) noexcept {
+    static Handle* create(const vobench_host_services* host) noexcept {
         try {
             auto* s = new Self(host);
             s->impl = std::make_unique<Impl>();
             s->impl->attach_host(&s->host);
-            return reinterpret_cast<vobench_odometry*>(s);
+            return reinterpret_cast<Handle*>(s);
         } catch (...) {
             return nullptr;
         }
     }
+    static const char* last_error(Handle* h) noexcept { return self(h)->error.c_str(); }
+    static void destroy(Handle* h) noexcept { delete self(h); }
+
+    static const DescriptorStore& store() {
+        static const DescriptorStore s(Impl::info(), Kind);
+        return s;
+    }
+    // The descriptor with `table` in its kind's slot; NULL for another ABI, or when info() (plugin
+    // code) throws — no exception escapes the entry either.
+    template <typename Table>
+    static const vobench_plugin_descriptor* entry_with(uint32_t abi, uint32_t api, const Table* table,
+                                                       const Table* vobench_plugin_descriptor::*slot) noexcept {
+        if (abi != VOBENCH_ABI_VERSION || api < 1) return nullptr;
+        try {
+            static const vobench_plugin_descriptor descriptor = [&] {
+                vobench_plugin_descriptor d = store().descriptor;
+                d.*slot = table;
+                return d;
+            }();
+            return &descriptor;
+        } catch (...) {
+            return nullptr;
+        }
+    }
+};
+
+template <typename Impl>
+struct OdometryBridge : BridgeBase<Impl, vobench_odometry, VOBENCH_KIND_ODOMETRY> {
+    using Base = BridgeBase<Impl, vobench_odometry, VOBENCH_KIND_ODOMETRY>;
+    using Base::self;
+
     static vobench_status start(vobench_odometry* h, const vobench_odometry_config* config) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] {
             if (config == nullptr || config->camera == nullptr)
                 throw Error(VOBENCH_INVALID_ARGUMENT, "start() needs a configuration with a camera");
-            const Params params(store().info.params, config->params);
+            const Params params(Base::store().info.params, config->params);
             s->impl->start(*config->camera, params, config->seed);
         });
     }
     static vobench_status process(vobench_odometry* h, const vobench_frame* frame, vobench_pose* pose,
                                   vobench_tracking_status* status) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] {
             if (frame == nullptr || pose == nullptr || status == nullptr)
                 throw Error(VOBENCH_INVALID_ARGUMENT, "process() needs a frame, a pose and a status");
@@ -380,91 +413,47 @@ struct OdometryBridge {
         });
     }
     static vobench_status reset(vobench_odometry* h) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] { s->impl->reset(); });
     }
-    static const char* last_error(vobench_odometry* h) noexcept { return self(h)->error.c_str(); }
-    static void destroy(vobench_odometry* h) noexcept { delete self(h); }
-
-    static const DescriptorStore& store() {
-        static const DescriptorStore s(Impl::info(), VOBENCH_KIND_ODOMETRY);
-        return s;
-    }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        if (abi != VOBENCH_ABI_VERSION || api < 1) return nullptr;
-        try {  // info() is plugin code: an exception here must not escape either
-        static const vobench_odometry_api table = {sizeof(vobench_odometry_api), &create, &start, &process,
-                                                   &reset, &last_error, &destroy};
-        static const vobench_plugin_descriptor descriptor = [] {
-            vobench_plugin_descriptor d = store().descriptor;
-            d.odometry = &table;
-            return d;
-        }();
-        return &descriptor;
-        } catch (...) {
-            return nullptr;
-        }
+        static const vobench_odometry_api table = {sizeof(vobench_odometry_api), &Base::create, &start, &process,
+                                                   &reset, &Base::last_error, &Base::destroy};
+        return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::odometry);
     }
 };
 
 template <typename Impl>
-struct DatasetBridge {
-    using Self = Instance<Impl>;
-    static Self* self(vobench_dataset* h) { return reinterpret_cast<Self*>(h); }
+struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
+    using Base = BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET>;
+    using Base::self;
 
-    static vobench_dataset* create(const vobench_host_services* host) noexcept {
-        try {
-            auto* s = new Self(host);
-            s->impl = std::make_unique<Impl>();
-            s->impl->attach_host(&s->host);
-            return reinterpret_cast<vobench_dataset*>(s);
-        } catch (...) {
-            return nullptr;
-        }
-    }
     static vobench_status open(vobench_dataset* h, const char* path, const vobench_params* options) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] {
             if (path == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "open() needs a path");
-            const Params params(store().info.params, options);
+            const Params params(Base::store().info.params, options);
             s->impl->open(path, params);
         });
     }
     static vobench_status describe(vobench_dataset* h, const vobench_sequence_info** out) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] {
             if (out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "describe() needs an output pointer");
             *out = &s->impl->describe();
         });
     }
     static vobench_status read_frame(vobench_dataset* h, uint64_t index, const vobench_frame** out) noexcept {
-        Self* s = self(h);
+        auto* s = self(h);
         return guarded(s->error, [&] {
             if (out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "read_frame() needs an output pointer");
             *out = &s->impl->read_frame(index);
         });
     }
-    static const char* last_error(vobench_dataset* h) noexcept { return self(h)->error.c_str(); }
-    static void destroy(vobench_dataset* h) noexcept { delete self(h); }
-
-    static const DescriptorStore& store() {
-        static const DescriptorStore s(Impl::info(), VOBENCH_KIND_DATASET);
-        return s;
-    }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        if (abi != VOBENCH_ABI_VERSION || api < 1) return nullptr;
-        try {  // info() is plugin code: an exception here must not escape either
-        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &create, &open, &describe,
-                                                  &read_frame, &last_error, &destroy};
-        static const vobench_plugin_descriptor descriptor = [] {
-            vobench_plugin_descriptor d = store().descriptor;
-            d.dataset = &table;
-            return d;
-        }();
-        return &descriptor;
-        } catch (...) {
-            return nullptr;
-        }
+        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &Base::create, &open, &describe,
+                                                  &read_frame, &Base::last_error, &Base::destroy};
+        return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::dataset);
     }
 };
 
