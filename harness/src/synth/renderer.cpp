@@ -2,6 +2,8 @@
 
 #include "synth/random_field.hpp"
 
+#include "depth_registration.hpp"  // plugins/common
+
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
 #include <tbb/parallel_for.h>
@@ -31,16 +33,6 @@ double srgb(double linear) {
 }
 
 }  // namespace
-
-Eigen::Vector2d project(const PinholeCamera& c, const Eigen::Vector3d& p) {
-    const double x = p.x() / p.z(), y = p.y() / p.z();
-    const auto& k = c.distortion;
-    const double r2 = x * x + y * y, r4 = r2 * r2, r6 = r4 * r2;
-    const double radial = (1 + k[0] * r2 + k[1] * r4 + k[4] * r6) / (1 + k[5] * r2 + k[6] * r4 + k[7] * r6);
-    const double xd = x * radial + 2 * k[2] * x * y + k[3] * (r2 + 2 * x * x);
-    const double yd = y * radial + k[2] * (r2 + 2 * y * y) + 2 * k[3] * x * y;
-    return {c.fx * xd + c.cx, c.fy * yd + c.cy};
-}
 
 Renderer::RayMap Renderer::make_ray_map(const PinholeCamera& c) {
     RayMap map;
@@ -242,36 +234,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const Eigen::Isomet
     cv::resize(out.depth_native, out.depth, cv::Size(sensor_.color.width, sensor_.color.height), 0, 0, cv::INTER_NEAREST);
 }
 
-cv::Mat Renderer::register_to_color(const cv::Mat& depth) const {
-    // Each depth pixel is a small square on the scene: project its 3-D point into the colour camera
-    // (with distortion) and fill the colour pixels its square covers, nearest depth first. The colour
-    // camera samples ~3× finer than the depth camera, so plain point projection (OpenCV's
-    // registerDepth) would leave most colour pixels empty; this is what the Kinect v2 SDK's
-    // "depth in colour space" mapping delivers.
-    const PinholeCamera& d = sensor_.depth;
-    const PinholeCamera& c = sensor_.color;
-    cv::Mat registered(c.height, c.width, CV_32FC1, cv::Scalar(0));
-    const double half = 0.5 * (c.fx / d.fx) + 0.25;
-    for (int v = 0; v < depth.rows; ++v)
-        for (int u = 0; u < depth.cols; ++u) {
-            const float z = depth.at<float>(v, u);
-            if (!(z > 0)) continue;
-            const Eigen::Vector3d X((u - d.cx) / d.fx * z, (v - d.cy) / d.fy * z, z);
-            const Eigen::Vector3d Xc = sensor_.depth_in_color * X;
-            if (Xc.z() <= 0.05) continue;
-            const Eigen::Vector2d p = project(c, Xc);
-            const double h = half * z / Xc.z();
-            const int u0 = std::max(0, static_cast<int>(std::ceil(p.x() - h))), u1 = std::min(c.width - 1, static_cast<int>(std::floor(p.x() + h)));
-            const int v0 = std::max(0, static_cast<int>(std::ceil(p.y() - h))), v1 = std::min(c.height - 1, static_cast<int>(std::floor(p.y() + h)));
-            const float zc = static_cast<float>(Xc.z());
-            for (int y = v0; y <= v1; ++y)
-                for (int x = u0; x <= u1; ++x) {
-                    float& dst = registered.at<float>(y, x);
-                    if (dst == 0 || zc < dst) dst = zc;
-                }
-        }
-    return registered;
-}
+rgbd::Intrinsics intrinsics_of(const PinholeCamera& c) { return {c.fx, c.fy, c.cx, c.cy, c.distortion_count, c.distortion}; }
 
 void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const {
     // Kinect v2: its own 512×424 camera beside the colour camera; axial noise after Fankhauser et al.
@@ -314,7 +277,9 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry
             out.depth_native.at<float>(v, u) = static_cast<float>(noisy.at<float>(v, u) + alpha * (other - z));
         }
     });
-    out.depth = register_to_color(out.depth_native);
+    // To the 1920×1080 colour camera, z-buffered splats (see plugins/common/depth_registration.hpp).
+    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color),
+                                     sensor_.depth_in_color, cv::Size(sensor_.color.width, sensor_.color.height));
 }
 
 }  // namespace vobench::synth

@@ -7,6 +7,8 @@
 #include "synth/scene.hpp"
 #include "synth/sensor_model.hpp"
 
+#include "depth_registration.hpp"  // plugins/common
+
 #include <opencv2/core.hpp>
 
 #include <vector>
@@ -52,8 +54,6 @@ private:
                         int v, DepthRay& out) const;
     void render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
-    // Native ToF depth (its own camera) to the colour camera's pixels, z-buffered.
-    cv::Mat register_to_color(const cv::Mat& depth_native) const;
 
     const Scene& scene_;
     SensorModel sensor_;
@@ -61,7 +61,7 @@ private:
     RayMap color_rays_, depth_rays_;
 };
 
-// Projects a camera-frame point with the rational distortion model (for blur and registration).
-Eigen::Vector2d project(const PinholeCamera& camera, const Eigen::Vector3d& point);
+// The registration library's view of a camera.
+rgbd::Intrinsics intrinsics_of(const PinholeCamera& camera);
 
 }  // namespace vobench::synth

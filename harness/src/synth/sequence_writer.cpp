@@ -62,10 +62,80 @@ void write_png(const fs::path& path, const cv::Mat& image) {
         throw std::runtime_error(path.string() + ": cannot write image");
 }
 
+// Where a layout puts a frame's images, and the depth it stores (16-bit).
+struct FrameFiles {
+    std::string color, depth;
+    cv::Mat depth16;
+};
+
+FrameFiles frame_files(const std::string& layout, uint64_t k, const std::string& stamp, const RenderedFrame& frame) {
+    FrameFiles f;
+    if (layout == "tum") {  // registered to colour, 5000 units per metre
+        f.color = "rgb/" + stamp + ".png";
+        f.depth = "depth/" + stamp + ".png";
+        frame.depth.convertTo(f.depth16, CV_16UC1, 5000.0);
+        return f;
+    }
+    // PUTK²: the depth camera's own image in millimetres (Kinect v1: the 320×240 registered grid;
+    // Kinect v2: 512×424, not registered — the reader registers it).
+    f.color = layout == "putk2" ? fmt::format("rgb_{:05d}.png", k) : "rgb/" + stamp + ".png";
+    f.depth = layout == "putk2" ? fmt::format("depth_{:05d}.png", k) : "depth/" + stamp + ".png";
+    frame.depth_native.convertTo(f.depth16, CV_16UC1, 1000.0);
+    return f;
+}
+
+std::string pose_line(const Eigen::Isometry3d& T) {  // x y z qw qx qy qz (w first, as PUT's files)
+    const Eigen::Quaterniond q(T.linear());
+    const Eigen::Vector3d t = T.translation();
+    return fmt::format("{} {} {} {} {} {} {}", t.x(), t.y(), t.z(), q.w(), q.x(), q.y(), q.z());
+}
+
+// The TUM layout's extras: camera.txt (colour intrinsics for the tum reader), and the marker
+// trajectory with the camera-in-marker pose from which groundtruth.txt follows (eq. 10).
+void write_tum_calibration(const SynthOptions& o, const SensorModel& sensor, const Paths& paths, uint64_t count) {
+    const PinholeCamera& c = sensor.color;
+    metrics::write_file_atomic(o.out / "camera.txt",
+                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
+                                           "{} {} {} {} {}\n",
+                                           c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
+    if (paths.marker.empty()) return;
+    std::string raw;
+    for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
+    metrics::write_file_atomic(o.out / "marker_groundtruth.txt", raw);
+    metrics::write_file_atomic(o.out / "camera_in_marker.txt",
+                               "# camera pose in the marker frame: x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
+}
+
+// PUTK²'s own files: camData.txt (colour intrinsics under PUT's camera id), cameraZnacznik.txt
+// (camera in marker), trajectory.txt (raw marker poses) and, for Kinect v2, depth_camera.txt
+// (depth intrinsics, then the depth camera's pose in the colour camera frame).
+void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, const Paths& paths, uint64_t count) {
+    const PinholeCamera& c = sensor.color;
+    const std::string id = sensor.name == "kinect1" ? "00022000" : "00033000";
+    std::vector<double> d(c.distortion.begin(), c.distortion.end());
+    metrics::write_file_atomic(o.out / "camData.txt",
+                               fmt::format("{}, {}, {}, {}, {}, {}\n", id, c.fx, c.fy, c.cx, c.cy, fmt::join(d, ", ")));
+    metrics::write_file_atomic(o.out / "cameraZnacznik.txt",
+                               "# camera pose in the marker frame\n# x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
+    if (!paths.marker.empty()) {
+        std::string raw;
+        for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
+        metrics::write_file_atomic(o.out / "trajectory.txt", raw);
+    }
+    if (sensor.principle == DepthPrinciple::TimeOfFlight) {
+        const PinholeCamera& dc = sensor.depth;
+        metrics::write_file_atomic(o.out / "depth_camera.txt",
+                                   fmt::format("# depth camera: fx fy cx cy, then its pose in the colour camera frame: x y z qw qx qy qz\n"
+                                               "{} {} {} {}\n{}\n",
+                                               dc.fx, dc.fy, dc.cx, dc.cy, pose_line(sensor.depth_in_color)));
+    }
+}
+
 }  // namespace
 
 SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t, uint64_t)>& progress) {
-    if (o.layout != "tum") throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum)");
+    if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum")
+        throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum)");
     if (o.out.empty()) throw std::invalid_argument("--out is required");
     const SensorModel sensor = sensor_by_name(o.sensor);
     const Paths paths = load_paths(o, sensor);
@@ -81,10 +151,15 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     const Scene scene = build_office(poses, office);
     const Renderer renderer(scene, sensor, o.seed);
 
-    fs::create_directories(o.out / "rgb");
-    fs::create_directories(o.out / "depth");
+    const bool putk2 = o.layout != "tum";
+    fs::create_directories(o.out);
+    if (o.layout != "putk2") {
+        fs::create_directories(o.out / "rgb");
+        fs::create_directories(o.out / "depth");
+    }
     std::string rgb_list = "# color images\n# vobench synth\n# timestamp filename\n";
     std::string depth_list = "# depth maps\n# vobench synth\n# timestamp filename\n";
+    std::string matched = "# frame rgb depth\n";
     metrics::Trajectory gt;
     const auto start = std::chrono::steady_clock::now();
     std::future<void> pending;  // PNG encoding of frame k overlaps rendering of frame k + 1
@@ -94,41 +169,35 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         const double interval = next.t - pose.t;
         RenderedFrame frame = renderer.render(k, pose.isometry(), next.isometry(), interval > 0 ? interval : 0.1, o.blur);
         const std::string stamp = fmt::format("{:.6f}", pose.t);
-        rgb_list += stamp + " rgb/" + stamp + ".png\n";
-        depth_list += stamp + " depth/" + stamp + ".png\n";
+        const FrameFiles files = frame_files(o.layout, k, stamp, frame);
+        rgb_list += stamp + " " + files.color + "\n";
+        depth_list += stamp + " " + files.depth + "\n";
+        matched += fmt::format("{} {} {}\n", k, files.color, files.depth);
         metrics::StampedPose g = pose;
-        g.t = std::stod(stamp);  // the stamp exactly as written in the lists
+        // TUM: the stamp exactly as written in the lists; PUTK²: the frame index (it has no clock).
+        g.t = putk2 ? static_cast<double>(k) : std::stod(stamp);
         gt.push_back(g);
         if (pending.valid()) pending.get();
-        pending = std::async(std::launch::async, [&o, stamp, frame = std::move(frame)] {
-            cv::Mat depth16;
-            frame.depth.convertTo(depth16, CV_16UC1, 5000.0);  // TUM: 5000 units per metre, rounded
-            write_png(o.out / "rgb" / (stamp + ".png"), frame.color);
-            write_png(o.out / "depth" / (stamp + ".png"), depth16);
+        pending = std::async(std::launch::async, [&o, files, color = std::move(frame.color)] {
+            write_png(o.out / files.color, color);
+            write_png(o.out / files.depth, files.depth16);
         });
         if (progress) progress(k + 1, count);
     }
     if (pending.valid()) pending.get();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
-    metrics::write_file_atomic(o.out / "depth.txt", depth_list);
-    metrics::write_tum(o.out / "groundtruth.txt", gt, "vobench synth: camera poses (camera-to-world)");
-    const PinholeCamera& c = sensor.color;
-    metrics::write_file_atomic(o.out / "camera.txt",
-                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
-                                           "{} {} {} {} {}\n",
-                                           c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
-    if (!paths.marker.empty()) {
-        std::string raw;
-        for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
-        metrics::write_file_atomic(o.out / "marker_groundtruth.txt", raw);
-        const Eigen::Quaterniond q(paths.camera_in_marker.linear());
-        const Eigen::Vector3d t = paths.camera_in_marker.translation();
-        metrics::write_file_atomic(o.out / "camera_in_marker.txt",
-                                   fmt::format("# camera pose in the marker frame: x y z qw qx qy qz\n{} {} {} {} {} {} {}\n", t.x(),
-                                               t.y(), t.z(), q.w(), q.x(), q.y(), q.z()));
+    if (o.layout == "putk2") {
+        metrics::write_file_atomic(o.out / "matched.txt", matched);
+    } else {
+        metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
+        metrics::write_file_atomic(o.out / "depth.txt", depth_list);
     }
+    metrics::write_tum(o.out / "groundtruth.txt", gt,
+                       putk2 ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
+                             : "vobench synth: camera poses (camera-to-world)");
+    if (putk2) write_putk2_calibration(o, sensor, paths, count);
+    else write_tum_calibration(o, sensor, paths, count);
     const nlohmann::json meta{{"generator", "vobench synth"},
                               {"generator_version", kGeneratorVersion},
                               {"vobench_version", VOBENCH_VERSION},
@@ -139,7 +208,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"blur", o.blur},
                               {"layout", o.layout},
                               {"frame_rate_hz", kFrameRateHz},
-                              {"depth_units_per_metre", 5000},
+                              {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
                               {"room_boxes", scene.boxes.size()}};
     metrics::write_file_atomic(o.out / "synth.json", meta.dump(2) + "\n");

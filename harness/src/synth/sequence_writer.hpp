@@ -6,6 +6,12 @@
 // marker_groundtruth.txt (PUTK² raw `id;rx;ry;rz;tx;ty;tz`) and camera_in_marker.txt (`x y z qw qx qy
 // qz`) from which groundtruth.txt follows by eq. 10, and synth.json with every parameter used.
 // Stamps are frame / 10 s (PUTK² records at 10 Hz).
+//
+// Layouts `putk2` (rgb_%05d.png, depth_%05d.png, matched.txt: `frame rgb depth`) and `putk2-tum`
+// (rgb/, depth/, rgb.txt, depth.txt) hold the depth camera's own image in millimetres (Kinect v1:
+// 320×240 registered; Kinect v2: 512×424 unregistered), groundtruth.txt with frame indices as stamps,
+// PUTK²'s camData.txt, cameraZnacznik.txt and trajectory.txt, and for Kinect v2 depth_camera.txt.
+// The putk2 reader reads both (datasets/README.md).
 #pragma once
 
 #include "metrics/pose.hpp"

@@ -6,7 +6,7 @@
 // 16-bit PNG with depth_factor units per metre (5000), registered to colour by the Kinect driver.
 // Intrinsics come from the `intrinsics` option; `auto` reads camera.txt when the folder has one (as
 // `vobench synth` writes), else guesses from the folder name (freiburg1/2/3) and says so in a warning.
-#include "tum_lists.hpp"
+#include "tum_lists.hpp"  // plugins/common
 
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
