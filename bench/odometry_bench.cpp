@@ -4,6 +4,7 @@
 // real TUM fr1/rpy sample when ../shared/data is present. Also the renderer's frames/s per sensor.
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
+#include "run/frame_prefetcher.hpp"
 #include "synth/sequence_writer.hpp"
 
 #include <benchmark/benchmark.h>
@@ -17,26 +18,6 @@ using namespace vobench;
 namespace fs = std::filesystem;
 
 namespace {
-
-// A decoded frame that owns its pixels.
-struct OwnedFrame {
-    std::vector<uint8_t> color, depth;
-    vobench_image color_image{}, depth_image{};
-    vobench_frame frame{};
-    explicit OwnedFrame(const vobench_frame& f) {
-        color.assign(static_cast<const uint8_t*>(f.color->data),
-                     static_cast<const uint8_t*>(f.color->data) + static_cast<std::size_t>(f.color->stride_bytes) * f.color->height);
-        depth.assign(static_cast<const uint8_t*>(f.depth->data),
-                     static_cast<const uint8_t*>(f.depth->data) + static_cast<std::size_t>(f.depth->stride_bytes) * f.depth->height);
-        color_image = *f.color;
-        color_image.data = color.data();
-        depth_image = *f.depth;
-        depth_image.data = depth.data();
-        frame = f;
-        frame.color = &color_image;
-        frame.depth = &depth_image;
-    }
-};
 
 struct Sequence {
     vobench_camera camera{};

@@ -1,4 +1,5 @@
 #include "abi/instances.hpp"
+#include "run/track.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -143,4 +144,18 @@ TEST_CASE("tum: each bad input is a clear error naming the file and line", "[dat
         write_sequence(dir);
         CHECK_THAT(open_error(dir, {{"intrinsic", "fr1"}}), Contains("plugin 'tum' has no parameter 'intrinsic'"));
     }
+}
+
+TEST_CASE("a frame that cannot be decoded ends the run there and keeps the poses before it", "[datasets][tum][track]") {
+    test::TempDir tmp;
+    write_sequence(tmp.path(), 5);
+    fs::resize_file(tmp.path() / "rgb" / "3.png", 40);
+    TrackOptions o;
+    o.dataset = "tum";
+    o.path = tmp.path().string();
+    o.algorithm = "constant_pose";
+    const TrackResult r = run_track(o, PluginRegistry({VOBENCH_PLUGIN_DIR}));  // frames decoded ahead on another thread
+    CHECK_THAT(r.error, Contains("reading frame 3:") && Contains("rgb/3.png: cannot decode image"));
+    CHECK(r.estimate.size() == 3);
+    CHECK(r.estimate[2].t == Approx(100.2));
 }

@@ -1,6 +1,7 @@
 #include "run/track.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "run/frame_prefetcher.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -43,8 +44,16 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     result.sensor = info.sensor ? info.sensor : "";
     const uint64_t count = options.max_frames > 0 ? std::min(options.max_frames, info.frame_count) : info.frame_count;
     spdlog::info("tracking {} frames of {} ({}) with {}", count, result.sequence, result.sensor, odometry.plugin().name());
+    FramePrefetcher frames(dataset, count);  // decoding overlaps the plugin, on another thread
     for (uint64_t i = 0; i < count; ++i) {
-        const vobench_frame& frame = dataset.read(i);
+        std::unique_ptr<OwnedFrame> owned;
+        try {
+            owned = frames.next();
+        } catch (const std::exception& e) {  // a bad frame ends the run; what was tracked is kept
+            result.error = fmt::format("reading frame {}: {}", i, e.what());
+            break;
+        }
+        const vobench_frame& frame = owned->frame;
         vobench_pose pose{};
         pose.struct_size = sizeof(pose);
         vobench_tracking_status tracking = VOBENCH_TRACKING_OK;

@@ -1,6 +1,7 @@
 // track.hpp — one odometry plugin on one sequence: the smallest useful run (`vobench track`).
 //
-// Frames are read and decoded outside the timed window; only the plugin's process() call is timed,
+// Frames are read and decoded ahead on another thread (FramePrefetcher), outside the timed window;
+// only the plugin's process() call is timed,
 // with the steady clock, in nanoseconds. Stage times and counters come from the host services.
 // Evaluation happens after the loop.
 #pragma once

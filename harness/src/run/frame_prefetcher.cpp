@@ -1,0 +1,70 @@
+#include "run/frame_prefetcher.hpp"
+
+namespace vobench {
+
+OwnedFrame::OwnedFrame(const vobench_frame& f) {
+    const auto* c = static_cast<const uint8_t*>(f.color->data);
+    const auto* d = static_cast<const uint8_t*>(f.depth->data);
+    color.assign(c, c + static_cast<std::size_t>(f.color->stride_bytes) * static_cast<std::size_t>(f.color->height));
+    depth.assign(d, d + static_cast<std::size_t>(f.depth->stride_bytes) * static_cast<std::size_t>(f.depth->height));
+    color_image = *f.color;
+    color_image.data = color.data();
+    depth_image = *f.depth;
+    depth_image.data = depth.data();
+    frame = f;
+    frame.color = &color_image;
+    frame.depth = &depth_image;
+}
+
+FramePrefetcher::FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth)
+    : dataset_(dataset), count_(count), depth_(depth == 0 ? 1 : depth), thread_([this] { run(); }) {}
+
+FramePrefetcher::~FramePrefetcher() {
+    {
+        std::lock_guard<std::mutex> lock(mutex_);
+        stop_ = true;
+    }
+    changed_.notify_all();
+    thread_.join();
+}
+
+void FramePrefetcher::run() {
+    for (uint64_t i = 0; i < count_; ++i) {
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            changed_.wait(lock, [this] { return stop_ || queue_.size() < depth_; });
+            if (stop_) return;
+        }
+        std::unique_ptr<OwnedFrame> frame;
+        try {
+            frame = std::make_unique<OwnedFrame>(dataset_.read(i));
+        } catch (...) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            error_ = std::current_exception();
+            done_ = true;
+            changed_.notify_all();
+            return;
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
+        queue_.push_back(std::move(frame));
+        changed_.notify_all();
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    done_ = true;
+    changed_.notify_all();
+}
+
+std::unique_ptr<OwnedFrame> FramePrefetcher::next() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    changed_.wait(lock, [this] { return !queue_.empty() || done_; });
+    if (!queue_.empty()) {
+        auto frame = std::move(queue_.front());
+        queue_.pop_front();
+        changed_.notify_all();
+        return frame;
+    }
+    if (error_) std::rethrow_exception(error_);
+    return nullptr;
+}
+
+}  // namespace vobench

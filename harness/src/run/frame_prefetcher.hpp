@@ -1,0 +1,59 @@
+// frame_prefetcher.hpp — decoding runs ahead of the odometry plugin on another thread.
+//
+// A reader's frame is valid only until its next read (ABI rule 7), so the prefetch thread copies each
+// frame into a buffer it owns and hands it over through a bounded queue: I/O and decoding overlap the
+// plugin's compute, and memory stays flat in the sequence length (at most `depth` + 1 frames exist,
+// whatever the sequence's length). The reader is used by the prefetch thread alone (ABI thread rule).
+// A read error is delivered in order, as an exception at the frame where it happened.
+#pragma once
+
+#include "abi/instances.hpp"
+
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <exception>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace vobench {
+
+// A decoded frame that owns its pixels.
+struct OwnedFrame {
+    std::vector<uint8_t> color, depth;
+    vobench_image color_image{}, depth_image{};
+    vobench_frame frame{};
+
+    explicit OwnedFrame(const vobench_frame& f);
+    OwnedFrame(const OwnedFrame&) = delete;
+    OwnedFrame& operator=(const OwnedFrame&) = delete;
+};
+
+class FramePrefetcher {
+public:
+    // Reads frames [0, count) of `dataset`, at most `depth` ahead of the consumer.
+    FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth = 4);
+    ~FramePrefetcher();
+    FramePrefetcher(const FramePrefetcher&) = delete;
+    FramePrefetcher& operator=(const FramePrefetcher&) = delete;
+
+    // The next frame in order; nullptr after the last. Rethrows the reader's error at its frame.
+    std::unique_ptr<OwnedFrame> next();
+
+private:
+    void run();
+
+    DatasetInstance& dataset_;
+    const uint64_t count_;
+    const std::size_t depth_;
+    std::mutex mutex_;
+    std::condition_variable changed_;
+    std::deque<std::unique_ptr<OwnedFrame>> queue_;
+    std::exception_ptr error_;
+    bool done_ = false, stop_ = false;
+    std::thread thread_;
+};
+
+}  // namespace vobench
