@@ -1,4 +1,4 @@
-// Odometry speed, side by side in one run: put_vo vs OpenCV's RgbdOdometry (opencv_rgbd) on the same
+// Reader speed (each reader alone, 640×480 and 1920×1080), and odometry speed, side by side in one run: put_vo vs OpenCV's RgbdOdometry (opencv_rgbd) on the same
 // frames, already decoded in memory, OpenCV limited to one thread — per frame time inside process().
 // Frames: synthetic Kinect v1 (640×480) and Kinect v2 (1920×1080) sequences rendered first, and the
 // real TUM fr1/rpy sample when ../shared/data is present. Also the renderer's frames/s per sensor.
@@ -100,8 +100,31 @@ void run_synth(benchmark::State& state, const std::string& sensor) {
     fs::remove_all(dir);
 }
 
+// A reader alone: frames/s of open-once, read every frame (decode, rescale or register), 10 frames.
+void run_reader(benchmark::State& state, const std::string& reader, const std::string& sensor, const std::string& layout) {
+    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-reader-" + sensor + "-" + layout);
+    if (!fs::exists(dir / "synth.json")) {
+        synth::SynthOptions o;
+        o.sensor = sensor;
+        o.trajectory = "explore1";
+        o.frames = 10;
+        o.layout = layout;
+        o.out = dir;
+        synth::synthesize(o);
+    }
+    DatasetInstance d(registry().find(reader, VOBENCH_KIND_DATASET));
+    d.open(dir.string(), {});
+    uint64_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(d.read(i++ % d.info().frame_count).depth->data);
+    state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(run_reader, tum/kinect1_640x480, "tum", "kinect1", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, tum/kinect2_1920x1080, "tum", "kinect2", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, putk2/kinect1_640x480, "putk2", "kinect1", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, putk2/kinect2_1920x1080_registered, "putk2", "kinect2", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo/kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo/kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
