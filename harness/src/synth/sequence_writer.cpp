@@ -65,15 +65,25 @@ void write_png(const fs::path& path, const cv::Mat& image) {
 // Where a layout puts a frame's images, and the depth it stores (16-bit).
 struct FrameFiles {
     std::string color, depth;
-    cv::Mat depth16;
+    cv::Mat color8, depth16;
 };
 
 FrameFiles frame_files(const std::string& layout, uint64_t k, const std::string& stamp, const RenderedFrame& frame) {
     FrameFiles f;
+    f.color8 = frame.color;
     if (layout == "tum") {  // registered to colour, 5000 units per metre
         f.color = "rgb/" + stamp + ".png";
         f.depth = "depth/" + stamp + ".png";
         frame.depth.convertTo(f.depth16, CV_16UC1, 5000.0);
+        return f;
+    }
+    if (layout == "icl-tum") {  // as TUM, but frame-index names and ICL's upside-down images (fy < 0)
+        f.color = fmt::format("rgb/{}.png", k);
+        f.depth = fmt::format("depth/{}.png", k);
+        cv::Mat depth16;
+        frame.depth.convertTo(depth16, CV_16UC1, 5000.0);
+        cv::flip(frame.color, f.color8, 0);
+        cv::flip(depth16, f.depth16, 0);
         return f;
     }
     // PUTK²: the depth camera's own image in millimetres (Kinect v1: the 320×240 registered grid;
@@ -106,6 +116,18 @@ void write_tum_calibration(const SynthOptions& o, const SensorModel& sensor, con
                                "# camera pose in the marker frame: x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
 }
 
+// camera.txt in ICL-NUIM's sign convention (its images are stored upside down: fy < 0, cy from the
+// bottom, p1 negated), so the icl_nuim reader's flip gives back the TUM layout's pixels.
+void write_icl_calibration(const SynthOptions& o, const SensorModel& sensor) {
+    const PinholeCamera& c = sensor.color;
+    std::vector<double> d(c.distortion.begin(), c.distortion.begin() + c.distortion_count);
+    if (d.size() > 2) d[2] = -d[2];
+    metrics::write_file_atomic(o.out / "camera.txt",
+                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6, ICL-NUIM convention (fy < 0: images stored upside down)\n"
+                                           "{} {} {} {} {}\n",
+                                           c.fx, -c.fy, c.cx, (c.height - 1) - c.cy, fmt::join(d, " ")));
+}
+
 // PUTK²'s own files: camData.txt (colour intrinsics under PUT's camera id), cameraZnacznik.txt
 // (camera in marker), trajectory.txt (raw marker poses) and, for Kinect v2, depth_camera.txt
 // (depth intrinsics, then the depth camera's pose in the colour camera frame).
@@ -134,8 +156,8 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
 }  // namespace
 
 SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t, uint64_t)>& progress) {
-    if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum")
-        throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum)");
+    if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum" && o.layout != "icl-tum")
+        throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum, icl-tum)");
     if (o.out.empty()) throw std::invalid_argument("--out is required");
     const SensorModel sensor = sensor_by_name(o.sensor);
     const Paths paths = load_paths(o, sensor);
@@ -151,7 +173,8 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     const Scene scene = build_office(poses, office);
     const Renderer renderer(scene, sensor, o.seed);
 
-    const bool putk2 = o.layout != "tum";
+    const bool putk2 = o.layout == "putk2" || o.layout == "putk2-tum";
+    const bool icl = o.layout == "icl-tum";
     fs::create_directories(o.out);
     if (o.layout != "putk2") {
         fs::create_directories(o.out / "rgb");
@@ -159,7 +182,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     }
     std::string rgb_list = "# color images\n# vobench synth\n# timestamp filename\n";
     std::string depth_list = "# depth maps\n# vobench synth\n# timestamp filename\n";
-    std::string matched = "# frame rgb depth\n";
+    std::string matched = "# frame rgb depth\n", associations;
     metrics::Trajectory gt;
     const auto start = std::chrono::steady_clock::now();
     std::future<void> pending;  // PNG encoding of frame k overlaps rendering of frame k + 1
@@ -173,13 +196,14 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         rgb_list += stamp + " " + files.color + "\n";
         depth_list += stamp + " " + files.depth + "\n";
         matched += fmt::format("{} {} {}\n", k, files.color, files.depth);
+        associations += fmt::format("{} {} {} {}\n", k, files.depth, k, files.color);
         metrics::StampedPose g = pose;
         // TUM: the stamp exactly as written in the lists; PUTK²: the frame index (it has no clock).
-        g.t = putk2 ? static_cast<double>(k) : std::stod(stamp);
+        g.t = putk2 || icl ? static_cast<double>(k) : std::stod(stamp);
         gt.push_back(g);
         if (pending.valid()) pending.get();
-        pending = std::async(std::launch::async, [&o, files, color = std::move(frame.color)] {
-            write_png(o.out / files.color, color);
+        pending = std::async(std::launch::async, [&o, files] {
+            write_png(o.out / files.color, files.color8);
             write_png(o.out / files.depth, files.depth16);
         });
         if (progress) progress(k + 1, count);
@@ -189,14 +213,17 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
 
     if (o.layout == "putk2") {
         metrics::write_file_atomic(o.out / "matched.txt", matched);
+    } else if (icl) {
+        metrics::write_file_atomic(o.out / "associations.txt", associations);
     } else {
         metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
         metrics::write_file_atomic(o.out / "depth.txt", depth_list);
     }
-    metrics::write_tum(o.out / "groundtruth.txt", gt,
-                       putk2 ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
-                             : "vobench synth: camera poses (camera-to-world)");
+    metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
+                       putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
+                                    : "vobench synth: camera poses (camera-to-world)");
     if (putk2) write_putk2_calibration(o, sensor, paths, count);
+    else if (icl) write_icl_calibration(o, sensor);
     else write_tum_calibration(o, sensor, paths, count);
     const nlohmann::json meta{{"generator", "vobench synth"},
                               {"generator_version", kGeneratorVersion},

@@ -1,0 +1,111 @@
+// The icl_nuim reader on sequences the generator wrote in ICL-NUIM's TUM-compatible layout (stored
+// upside down, fy < 0), against the same sequence in the TUM layout.
+#include "abi/instances.hpp"
+#include "run/track.hpp"
+#include "synth/sequence_writer.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <opencv2/core.hpp>
+
+#include <fstream>
+
+using namespace vobench;
+using Catch::Matchers::Contains;
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path render(const fs::path& root, const std::string& layout) {
+    synth::SynthOptions o;
+    o.sensor = "kinect1";
+    o.trajectory = "speed2";
+    o.frames = 6;
+    o.layout = layout;
+    o.out = root / layout;
+    synth::synthesize(o);
+    return o.out;
+}
+
+std::string open_error(const fs::path& dir) {
+    try {
+        DatasetInstance d(PluginLibrary::load(test::plugin("icl_nuim")));
+        d.open(dir.string(), {});
+        for (uint64_t i = 0; i < d.info().frame_count; ++i) d.read(i);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("icl_nuim presents fy > 0 and the same pixels and poses as the TUM layout", "[datasets][icl]") {
+    test::TempDir tmp;
+    const fs::path tum_dir = render(tmp.path(), "tum"), icl_dir = render(tmp.path(), "icl-tum");
+    DatasetInstance tum(PluginLibrary::load(test::plugin("tum")));
+    tum.open(tum_dir.string(), {});
+    DatasetInstance icl(PluginLibrary::load(test::plugin("icl_nuim")));
+    icl.open(icl_dir.string(), {{"frame_rate", "10"}});
+    const vobench_camera& a = *tum.info().camera;
+    const vobench_camera& b = *icl.info().camera;
+    CHECK(b.fy > 0);
+    CHECK(b.fy == Approx(a.fy));
+    CHECK(b.cy == Approx(a.cy));
+    for (int i = 0; i < 8; ++i) CHECK(b.distortion[i] == Approx(a.distortion[i]).margin(1e-15));
+    const auto gt_tum = ground_truth_of(tum.info()), gt_icl = ground_truth_of(icl.info());
+    REQUIRE(gt_icl.size() == gt_tum.size());
+    for (std::size_t k = 0; k < gt_icl.size(); ++k) {
+        CHECK(gt_icl[k].t == Approx(gt_tum[k].t));
+        CHECK((gt_icl[k].isometry().matrix() - gt_tum[k].isometry().matrix()).cwiseAbs().maxCoeff() < 1e-12);
+    }
+    for (uint64_t i = 0; i < 6; i += 5) {
+        const vobench_frame& fi = icl.read(i);
+        const cv::Mat ci(fi.color->height, fi.color->width, CV_8UC3, const_cast<void*>(fi.color->data), static_cast<std::size_t>(fi.color->stride_bytes));
+        const cv::Mat di(fi.depth->height, fi.depth->width, CV_16UC1, const_cast<void*>(fi.depth->data), static_cast<std::size_t>(fi.depth->stride_bytes));
+        const cv::Mat ci_copy = ci.clone(), di_copy = di.clone();
+        const vobench_frame& ft = tum.read(i);
+        const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data), static_cast<std::size_t>(ft.color->stride_bytes));
+        const cv::Mat dt(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data), static_cast<std::size_t>(ft.depth->stride_bytes));
+        CHECK(cv::norm(ci_copy, ct, cv::NORM_INF) == 0);
+        CHECK(cv::norm(di_copy, dt, cv::NORM_INF) == 0);
+    }
+}
+
+TEST_CASE("icl_nuim: frames without a pose are delivered, and evaluation matches the rest", "[datasets][icl]") {
+    test::TempDir tmp;
+    const fs::path dir = render(tmp.path(), "icl-tum");
+    // Drop the pose of frame 2 from the ground truth.
+    std::ifstream in(dir / "synth.gt.freiburg");
+    std::string line, kept;
+    while (std::getline(in, line))
+        if (line.rfind("2 ", 0) != 0) kept += line + "\n";
+    in.close();
+    std::ofstream(dir / "synth.gt.freiburg") << kept;
+    TrackOptions o;
+    o.dataset = "icl_nuim";
+    o.path = dir.string();
+    o.algorithm = "put_vo";
+    const TrackResult r = run_track(o, PluginRegistry({VOBENCH_PLUGIN_DIR}));
+    CHECK(r.frames.size() == 6);
+    REQUIRE(r.evaluation);
+    CHECK(r.evaluation->ate->association.matches.size() == 5);
+    CHECK(r.evaluation->ate->association.unmatched_second == 1);
+}
+
+TEST_CASE("icl_nuim: bad input names the file and line", "[datasets][icl]") {
+    test::TempDir tmp;
+    const fs::path dir = render(tmp.path(), "icl-tum");
+    SECTION("malformed associations line") {
+        std::ofstream(dir / "associations.txt", std::ios::app) << "7 depth/7.png\n";
+        CHECK_THAT(open_error(dir), Contains("associations.txt:7: expected `t_depth depth_file t_rgb rgb_file`"));
+    }
+    SECTION("malformed camera file") {
+        std::ofstream(dir / "camera.txt") << "481.2 -480\n";
+        CHECK_THAT(open_error(dir), Contains("camera.txt:1: expected `fx fy cx cy`"));
+    }
+    SECTION("missing image") {
+        fs::remove(dir / "rgb" / "4.png");
+        CHECK_THAT(open_error(dir), Contains("rgb/4.png: missing file"));
+    }
+}
