@@ -137,6 +137,10 @@ TEST_CASE("putk2: bad input is a clear error naming the file and line", "[datase
         std::ofstream(dir / "matched.txt", std::ios::app) << "x rgb_00009.png\n";
         CHECK_THAT(open_error(dir), Contains("matched.txt:4: expected `frame rgb_file depth_file`"));
     }
+    SECTION("frame number out of range (found by fuzz_lists)") {
+        std::ofstream(dir / "matched.txt", std::ios::app) << "88888888888888888888 rgb_00001.png depth_00001.png\n";
+        CHECK_THAT(open_error(dir), Contains("matched.txt:4: the frame number is not an integer in [0, 2^53]"));
+    }
     SECTION("missing depth image") {
         fs::remove(dir / "depth_00001.png");
         CHECK_THAT(open_error(dir), Contains("depth_00001.png: missing file"));

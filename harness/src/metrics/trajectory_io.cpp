@@ -247,7 +247,8 @@ void parse_putk2_raw(const std::string& text, Reader& r) {
     std::vector<double> v;
     for (const Line& line : split_lines(text, "; \t")) {
         r.numbers(line, 7, v);
-        if (v[0] != std::floor(v[0]) || v[0] < 0) r.fail(line.number, "the frame id is not a non-negative integer");
+        if (v[0] != std::floor(v[0]) || v[0] < 0 || v[0] > 9007199254740992.0)
+            r.fail(line.number, "the frame id is not an integer in [0, 2^53]");
         const Eigen::Vector3d rodrigues(v[1], v[2], v[3]);
         const double angle = rodrigues.norm();
         Eigen::Isometry3d M = Eigen::Isometry3d::Identity();

@@ -96,7 +96,9 @@ std::vector<MatchedFrame> parse_matched(const std::string& text, const std::stri
         const auto f = split(line, " \t");
         if (f.size() != 3) throw std::runtime_error(where + "expected `frame rgb_file depth_file`");
         const double id = number(f[0], where);
-        if (id < 0 || id != std::floor(id)) throw std::runtime_error(where + "the frame number is not a non-negative integer");
+        // Beyond 2^53 a double no longer holds every integer (and a long long may not hold it at all).
+        if (id < 0 || id != std::floor(id) || id > 9007199254740992.0)
+            throw std::runtime_error(where + "the frame number is not an integer in [0, 2^53]");
         if (!frames.empty() && id <= static_cast<double>(frames.back().id))
             throw std::runtime_error(where + "frame numbers must increase");
         frames.push_back({static_cast<long long>(id), f[1], f[2]});
