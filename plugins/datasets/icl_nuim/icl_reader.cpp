@@ -11,13 +11,14 @@
 // camera.txt (`fx fy cx cy [k1 k2 p1 p2 …]`, ICL's sign convention) that `vobench synth` writes.
 #include "metrics/trajectory_io.hpp"
 
+#include "dataset_files.hpp"  // plugins/common
+
 #include <vobench/plugin.hpp>
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace {
@@ -25,13 +26,6 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot open file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 class IclReader : public vobench::sdk::Dataset {
 public:
@@ -56,7 +50,7 @@ public:
         rate_ = o.get_double("frame_rate");
         depth_factor_ = o.get_double("depth_factor");
         parse_associations(root_ / "associations.txt");
-        const cv::Mat first = load(root_ / frames_.front().color, cv::IMREAD_COLOR);
+        const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
         double k[12] = {o.get_double("fx"), o.get_double("fy"), o.get_double("cx"), o.get_double("cy")};
         int count = 4;
         if (fs::exists(root_ / "camera.txt")) count = read_camera(root_ / "camera.txt", k);
@@ -76,10 +70,8 @@ public:
         if (index >= frames_.size())
             throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(frames_.size()) + " frames)");
         const Frame& f = frames_[index];
-        cv::Mat color = load(root_ / f.color, cv::IMREAD_COLOR), depth = load(root_ / f.depth, cv::IMREAD_UNCHANGED);
-        if (depth.type() != CV_16UC1)
-            throw Error(VOBENCH_IO_ERROR, (root_ / f.depth).string() + ": depth must be a 16-bit single-channel PNG, found " +
-                                              (depth.depth() == CV_8U ? "8-bit" : "another type"));
+        cv::Mat color = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR), depth = vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);
+        vobench::files::require_depth16(depth, (root_ / f.depth));
         if (color.cols != camera_.width || color.rows != camera_.height || depth.size() != color.size())
             throw Error(VOBENCH_IO_ERROR, "frame " + std::to_string(index) + ": colour " + (root_ / f.color).string() + " is " +
                                               std::to_string(color.cols) + "x" + std::to_string(color.rows) + ", depth is " +
@@ -92,8 +84,8 @@ public:
             color_ = color;
             depth_ = depth;
         }
-        color_image_ = {sizeof(vobench_image), color_.cols, color_.rows, static_cast<int32_t>(color_.step[0]), VOBENCH_PIXEL_BGR8, color_.data};
-        depth_image_ = {sizeof(vobench_image), depth_.cols, depth_.rows, static_cast<int32_t>(depth_.step[0]), VOBENCH_PIXEL_DEPTH_U16, depth_.data};
+        color_image_ = vobench::files::image_of(color_, VOBENCH_PIXEL_BGR8);
+        depth_image_ = vobench::files::image_of(depth_, VOBENCH_PIXEL_DEPTH_U16);
         frame_ = {sizeof(vobench_frame), index, f.stamp, f.stamp, &color_image_, &depth_image_, 1.0 / depth_factor_};
         return frame_;
     }
@@ -104,23 +96,12 @@ private:
         std::string color, depth;
     };
 
-    static cv::Mat load(const fs::path& path, int flags) {
-        if (!fs::exists(path)) throw Error(VOBENCH_IO_ERROR, path.string() + ": missing file");
-        cv::Mat m;
-        try {
-            m = cv::imread(path.string(), flags);
-        } catch (const cv::Exception& e) {
-            throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (" + e.what() + ")");
-        }
-        if (m.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (corrupt or truncated?)");
-        return m;
-    }
 
     double stamp_of(double index) const { return rate_ > 0 ? index / rate_ : index; }
 
     // associations.txt: `t_depth depth/i.png t_rgb rgb/i.png` per line.
     void parse_associations(const fs::path& path) {
-        std::istringstream in(read_text(path));
+        std::istringstream in(vobench::files::read_text(path));
         std::string line;
         std::size_t number = 0;
         while (std::getline(in, line)) {
@@ -140,7 +121,7 @@ private:
     }
 
     static int read_camera(const fs::path& path, double* k) {
-        std::istringstream in(read_text(path));
+        std::istringstream in(vobench::files::read_text(path));
         std::string line;
         std::size_t number = 0;
         while (std::getline(in, line)) {

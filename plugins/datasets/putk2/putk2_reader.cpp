@@ -17,6 +17,8 @@
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
 
+#include "dataset_files.hpp"  // plugins/common
+
 #include <vobench/plugin.hpp>
 
 #include <opencv2/imgcodecs.hpp>
@@ -24,7 +26,6 @@
 #include <opencv2/rgbd.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace {
@@ -32,13 +33,6 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot open file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 // PUT's calibration of the two Kinect colour cameras (camData.txt), used when a folder has none.
 const vobench::putk2::CameraCalibration kPutKinect1{"00022000", 532.77250, 531.85745, 312.23007, 260.11708,
@@ -77,7 +71,7 @@ public:
         depth_unit_ = o.get_double("depth_unit");
         opencv_registration_ = o.get_string("registration") == "opencv";
         load_frames(o);
-        const cv::Mat first = load(root_ / frames_.front().color, cv::IMREAD_COLOR);
+        const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
         std::string sensor = o.get_string("sensor");
         if (sensor == "auto") {
             if (first.cols == 640 && first.rows == 480) sensor = "kinect1";
@@ -110,15 +104,13 @@ public:
         if (index >= frames_.size())
             throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(frames_.size()) + " frames)");
         const Frame& f = frames_[index];
-        color_ = load(root_ / f.color, cv::IMREAD_COLOR);
+        color_ = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
         const fs::path depth_path = root_ / f.depth;
-        cv::Mat raw = load(depth_path, cv::IMREAD_UNCHANGED);
+        cv::Mat raw = vobench::files::load_image(depth_path, cv::IMREAD_UNCHANGED);
         if (color_.cols != camera_.width || color_.rows != camera_.height)
             throw Error(VOBENCH_IO_ERROR, (root_ / f.color).string() + ": " + std::to_string(color_.cols) + "x" + std::to_string(color_.rows) +
                                               ", expected " + std::to_string(camera_.width) + "x" + std::to_string(camera_.height));
-        if (raw.type() != CV_16UC1)
-            throw Error(VOBENCH_IO_ERROR, depth_path.string() + ": depth must be a 16-bit single-channel PNG, found " +
-                                              (raw.depth() == CV_8U ? "8-bit" : "another type"));
+        vobench::files::require_depth16(raw, depth_path);
         int32_t format;
         if (raw.size() == color_.size()) {  // already registered to colour
             depth_ = raw;
@@ -140,8 +132,8 @@ public:
             format = VOBENCH_PIXEL_DEPTH_F32;
             frame_.depth_scale = 1.0;
         }
-        color_image_ = {sizeof(vobench_image), color_.cols, color_.rows, static_cast<int32_t>(color_.step[0]), VOBENCH_PIXEL_BGR8, color_.data};
-        depth_image_ = {sizeof(vobench_image), depth_.cols, depth_.rows, static_cast<int32_t>(depth_.step[0]), format, depth_.data};
+        color_image_ = vobench::files::image_of(color_, VOBENCH_PIXEL_BGR8);
+        depth_image_ = vobench::files::image_of(depth_, format);
         frame_.struct_size = sizeof(frame_);
         frame_.index = index;
         frame_.timestamp = f.stamp;
@@ -157,17 +149,6 @@ private:
         std::string color, depth;
     };
 
-    static cv::Mat load(const fs::path& path, int flags) {
-        if (!fs::exists(path)) throw Error(VOBENCH_IO_ERROR, path.string() + ": missing file");
-        cv::Mat m;
-        try {
-            m = cv::imread(path.string(), flags);
-        } catch (const cv::Exception& e) {
-            throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (" + e.what() + ")");
-        }
-        if (m.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (corrupt or truncated?)");
-        return m;
-    }
 
     // Runs a parser, turning its std::runtime_error into an I/O error status.
     template <typename F>
@@ -188,15 +169,15 @@ private:
         if (layout.empty()) throw Error(VOBENCH_IO_ERROR, root_.string() + ": neither matched.txt nor rgb.txt: not a PUTK² sequence");
         if (layout == "putk2") {
             const fs::path list = root_ / "matched.txt";
-            for (const auto& m : parsed([&] { return vobench::putk2::parse_matched(read_text(list), list.string()); })) {
+            for (const auto& m : parsed([&] { return vobench::putk2::parse_matched(vobench::files::read_text(list), list.string()); })) {
                 const double t = static_cast<double>(m.id) / rate_;
                 frames_.push_back({t, t, m.color, m.depth});
             }
             return;
         }
         const fs::path rgb_path = root_ / "rgb.txt", depth_path = root_ / "depth.txt";
-        const auto rgb = parsed([&] { return vobench::tum::parse_list(read_text(rgb_path), rgb_path.string()); });
-        const auto depth = parsed([&] { return vobench::tum::parse_list(read_text(depth_path), depth_path.string()); });
+        const auto rgb = parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(rgb_path), rgb_path.string()); });
+        const auto depth = parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(depth_path), depth_path.string()); });
         std::vector<double> a, b;
         for (const auto& e : rgb) a.push_back(e.stamp);
         for (const auto& e : depth) b.push_back(e.stamp);
@@ -213,7 +194,7 @@ private:
         if (id.empty()) id = sensor_ == "kinect1" ? kPutKinect1.id : kPutKinect2.id;
         vobench::putk2::CameraCalibration cal = sensor_ == "kinect1" ? kPutKinect1 : kPutKinect2;
         if (!file.empty()) {
-            const auto cameras = parsed([&] { return vobench::putk2::parse_cam_data(read_text(file), file); });
+            const auto cameras = parsed([&] { return vobench::putk2::parse_cam_data(vobench::files::read_text(file), file); });
             bool found = false;
             std::string ids;
             for (const auto& c : cameras) {
@@ -239,7 +220,7 @@ private:
             std::string depth_file = o.get_string("depth_camera");
             if (depth_file.empty() && fs::exists(root_ / "depth_camera.txt")) depth_file = (root_ / "depth_camera.txt").string();
             if (!depth_file.empty()) {
-                depth_camera_ = parsed([&] { return vobench::putk2::parse_depth_camera(read_text(depth_file), depth_file); });
+                depth_camera_ = parsed([&] { return vobench::putk2::parse_depth_camera(vobench::files::read_text(depth_file), depth_file); });
             } else {
                 // Nominal Kinect v2 depth camera (≈70°×60°), 5.2 cm beside the colour camera.
                 depth_camera_ = {365.5, 365.5, 255.5, 211.5, Eigen::Isometry3d::Identity()};

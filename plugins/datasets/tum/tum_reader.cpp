@@ -11,6 +11,8 @@
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
 
+#include "dataset_files.hpp"  // plugins/common
+
 #include <vobench/plugin.hpp>
 
 #include <nlohmann/json.hpp>
@@ -19,7 +21,6 @@
 #include <opencv2/imgproc.hpp>
 
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 namespace {
@@ -38,13 +39,6 @@ const Intrinsics kFr2{520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.
 const Intrinsics kFr3{535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0}};
 const Intrinsics kRosDefault{525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0}};
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot open file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
 
 class TumReader : public vobench::sdk::Dataset {
 public:
@@ -71,8 +65,8 @@ public:
     void open(const std::string& path, const vobench::sdk::Params& options) override {
         root_ = path;
         if (!fs::is_directory(root_)) throw Error(VOBENCH_IO_ERROR, path + ": not a folder");
-        const auto rgb = vobench::tum::parse_list(read_text(root_ / "rgb.txt"), (root_ / "rgb.txt").string());
-        const auto depth = vobench::tum::parse_list(read_text(root_ / "depth.txt"), (root_ / "depth.txt").string());
+        const auto rgb = vobench::tum::parse_list(vobench::files::read_text(root_ / "rgb.txt"), (root_ / "rgb.txt").string());
+        const auto depth = vobench::tum::parse_list(vobench::files::read_text(root_ / "depth.txt"), (root_ / "depth.txt").string());
         std::vector<double> rgb_stamps, depth_stamps;
         for (const auto& e : rgb) rgb_stamps.push_back(e.stamp);
         for (const auto& e : depth) depth_stamps.push_back(e.stamp);
@@ -104,8 +98,7 @@ public:
         if (name_.empty()) name_ = fs::absolute(root_).lexically_normal().parent_path().filename().string();
 
         // Frame geometry from the first colour image; every frame is checked against it.
-        const cv::Mat first = cv::imread((root_ / pairs_.front().color.path).string(), cv::IMREAD_UNCHANGED);
-        if (first.empty()) throw Error(VOBENCH_IO_ERROR, (root_ / pairs_.front().color.path).string() + ": cannot decode image");
+        const cv::Mat first = vobench::files::load_image(root_ / pairs_.front().color.path, cv::IMREAD_UNCHANGED);
         camera_.struct_size = sizeof(camera_);
         camera_.width = first.cols;
         camera_.height = first.rows;
@@ -134,12 +127,10 @@ public:
                                                   std::to_string(pairs_.size()) + " frames)");
         const Pair& pair = pairs_[index];
         const fs::path color_path = root_ / pair.color.path, depth_path = root_ / pair.depth.path;
-        color_ = load(color_path, cv::IMREAD_COLOR);
-        depth_ = load(depth_path, cv::IMREAD_UNCHANGED);
+        color_ = vobench::files::load_image(color_path, cv::IMREAD_COLOR);
+        depth_ = vobench::files::load_image(depth_path, cv::IMREAD_UNCHANGED);
         if (color_.type() != CV_8UC3) throw Error(VOBENCH_IO_ERROR, color_path.string() + ": not an 8-bit colour image");
-        if (depth_.type() != CV_16UC1)
-            throw Error(VOBENCH_IO_ERROR, depth_path.string() + ": depth must be a 16-bit single-channel PNG, found " +
-                                              (depth_.depth() == CV_8U ? "8-bit" : "another type"));
+        vobench::files::require_depth16(depth_, depth_path);
         if (color_.cols != camera_.width || color_.rows != camera_.height || depth_.size() != color_.size())
             throw Error(VOBENCH_IO_ERROR, "frame " + std::to_string(index) + ": colour " + color_path.string() + " is " +
                                               std::to_string(color_.cols) + "x" + std::to_string(color_.rows) + ", depth " +
@@ -153,8 +144,8 @@ public:
             color_ = c;
             depth_ = d;
         }
-        color_image_ = {sizeof(vobench_image), color_.cols, color_.rows, static_cast<int32_t>(color_.step[0]), VOBENCH_PIXEL_BGR8, color_.data};
-        depth_image_ = {sizeof(vobench_image), depth_.cols, depth_.rows, static_cast<int32_t>(depth_.step[0]), VOBENCH_PIXEL_DEPTH_U16, depth_.data};
+        color_image_ = vobench::files::image_of(color_, VOBENCH_PIXEL_BGR8);
+        depth_image_ = vobench::files::image_of(depth_, VOBENCH_PIXEL_DEPTH_U16);
         frame_ = {sizeof(vobench_frame), index, pair.color.stamp, pair.depth.stamp, &color_image_, &depth_image_, 1.0 / depth_factor_};
         return frame_;
     }
@@ -164,17 +155,6 @@ private:
         vobench::tum::ListEntry color, depth;
     };
 
-    static cv::Mat load(const fs::path& path, int flags) {
-        if (!fs::exists(path)) throw Error(VOBENCH_IO_ERROR, path.string() + ": missing file");
-        cv::Mat m;
-        try {
-            m = cv::imread(path.string(), flags);
-        } catch (const cv::Exception& e) {
-            throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (" + e.what() + ")");
-        }
-        if (m.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (corrupt or truncated?)");
-        return m;
-    }
 
     void set_intrinsics(const vobench::sdk::Params& options) {
         std::string which = options.get_string("intrinsics");
@@ -222,7 +202,7 @@ private:
 
     // camera.txt (written by `vobench synth`): one line `fx fy cx cy d0 … d7`, '#' comments.
     void read_camera_file(const fs::path& path) {
-        std::istringstream in(read_text(path));
+        std::istringstream in(vobench::files::read_text(path));
         std::string line;
         std::size_t number = 0;
         while (std::getline(in, line)) {
@@ -246,7 +226,7 @@ private:
             // A generated sequence names its sensor model in synth.json.
             if (fs::exists(root_ / "synth.json")) {
                 try {
-                    sensor_ = nlohmann::json::parse(read_text(root_ / "synth.json")).value("sensor", sensor_);
+                    sensor_ = nlohmann::json::parse(vobench::files::read_text(root_ / "synth.json")).value("sensor", sensor_);
                 } catch (const nlohmann::json::exception& e) {
                     throw Error(VOBENCH_IO_ERROR, (root_ / "synth.json").string() + ": " + e.what());
                 }

@@ -1,0 +1,44 @@
+#include "dataset_files.hpp"
+
+#include <vobench/plugin.hpp>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include <fstream>
+#include <sstream>
+
+namespace vobench::files {
+
+using sdk::Error;
+
+std::string read_text(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot open file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+cv::Mat load_image(const std::filesystem::path& path, int flags) {
+    if (!std::filesystem::exists(path)) throw Error(VOBENCH_IO_ERROR, path.string() + ": missing file");
+    cv::Mat m;
+    try {
+        m = cv::imread(path.string(), flags);
+    } catch (const cv::Exception& e) {
+        throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (" + e.what() + ")");
+    }
+    if (m.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (corrupt or truncated?)");
+    return m;
+}
+
+void require_depth16(const cv::Mat& depth, const std::filesystem::path& path) {
+    if (depth.type() != CV_16UC1)
+        throw Error(VOBENCH_IO_ERROR, path.string() + ": depth must be a 16-bit single-channel PNG, found " +
+                                          (depth.depth() == CV_8U ? "8-bit" : "another type"));
+}
+
+vobench_image image_of(const cv::Mat& m, vobench_pixel_format format) {
+    return {sizeof(vobench_image), m.cols, m.rows, static_cast<int32_t>(m.step[0]), format, m.data};
+}
+
+}  // namespace vobench::files

@@ -1,0 +1,26 @@
+// dataset_files.hpp — what every dataset reader does with files: read a text file, decode an image,
+// check a depth image's type, and describe a cv::Mat as an ABI image. Failures are
+// vobench::sdk::Error(VOBENCH_IO_ERROR) naming the file.
+#pragma once
+
+#include <vobench/vobench_plugin.h>
+
+#include <opencv2/core.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace vobench::files {
+
+std::string read_text(const std::filesystem::path& path);
+
+// cv::imread with clear messages: "missing file", "cannot decode image (corrupt or truncated?)".
+cv::Mat load_image(const std::filesystem::path& path, int imread_flags);
+
+// Throws unless `depth` is 16-bit single-channel ("found 8-bit" when it is 8-bit).
+void require_depth16(const cv::Mat& depth, const std::filesystem::path& path);
+
+// The ABI view of a matrix; valid as long as `m` keeps its pixels.
+vobench_image image_of(const cv::Mat& m, vobench_pixel_format format);
+
+}  // namespace vobench::files
