@@ -109,3 +109,51 @@ TEST_CASE("icl_nuim: bad input names the file and line", "[datasets][icl]") {
         CHECK_THAT(open_error(dir), Contains("rgb/4.png: missing file"));
     }
 }
+
+TEST_CASE("icl_nuim reads the POV-Ray layout: ray distances to z, poses from camera vectors and .gt.sim", "[datasets][icl]") {
+    test::TempDir tmp;
+    const fs::path tum_dir = render(tmp.path(), "tum"), pov_dir = render(tmp.path(), "icl-povray");
+    DatasetInstance tum(PluginLibrary::load(test::plugin("tum")));
+    tum.open(tum_dir.string(), {});
+    for (const std::string gt_file : {"", "synth.gt.sim"}) {
+        INFO("ground truth from " << (gt_file.empty() ? "camera vectors" : gt_file));
+        DatasetInstance pov(PluginLibrary::load(test::plugin("icl_nuim")));
+        ParamMap options{{"frame_rate", "10"}};
+        if (!gt_file.empty()) options["ground_truth"] = (pov_dir / gt_file).string();
+        pov.open(pov_dir.string(), options);
+        CHECK(pov.info().frame_count == 6);
+        CHECK(pov.info().camera->fy == Approx(tum.info().camera->fy));
+        const auto a = ground_truth_of(tum.info()), b = ground_truth_of(pov.info());
+        REQUIRE(a.size() == b.size());
+        for (std::size_t k = 0; k < a.size(); ++k) {
+            CHECK(b[k].t == Approx(a[k].t));
+            CHECK((b[k].isometry().matrix() - a[k].isometry().matrix()).cwiseAbs().maxCoeff() < 1e-9);
+        }
+    }
+    DatasetInstance pov(PluginLibrary::load(test::plugin("icl_nuim")));
+    pov.open(pov_dir.string(), {});
+    const vobench_frame& fp = pov.read(3);
+    const cv::Mat zp = cv::Mat(fp.depth->height, fp.depth->width, CV_32F, const_cast<void*>(fp.depth->data), static_cast<std::size_t>(fp.depth->stride_bytes)).clone();
+    const cv::Mat cp = cv::Mat(fp.color->height, fp.color->width, CV_8UC3, const_cast<void*>(fp.color->data), static_cast<std::size_t>(fp.color->stride_bytes)).clone();
+    const vobench_frame& ft = tum.read(3);
+    cv::Mat zt;
+    cv::Mat(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data), static_cast<std::size_t>(ft.depth->stride_bytes)).convertTo(zt, CV_32F, ft.depth_scale);
+    const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data), static_cast<std::size_t>(ft.color->stride_bytes));
+    CHECK(cv::norm(cp, ct, cv::NORM_INF) == 0);
+    // z from ray distances (6 decimals) against the TUM layout's 1/5000 m steps.
+    CHECK(cv::norm(zp, zt, cv::NORM_INF) <= 0.00011);
+    CHECK(cv::countNonZero(zp > 0) == cv::countNonZero(zt > 0));
+}
+
+TEST_CASE("icl_nuim POV-Ray layout: bad input names the file", "[datasets][icl]") {
+    test::TempDir tmp;
+    const fs::path dir = render(tmp.path(), "icl-povray");
+    SECTION("too few depth values") {
+        std::ofstream(dir / "scene_00_0002.depth") << "1.0 2.0 3.0\n";
+        CHECK_THAT(open_error(dir), Contains("scene_00_0002.depth: value 4 of 307200 is missing or not a number"));
+    }
+    SECTION("camera vectors without cam_dir") {
+        std::ofstream(dir / "scene_00_0001.txt") << "cam_pos = [0, 0, 0]';\ncam_up = [0, 1, 0]';\n";
+        CHECK_THAT(open_error(dir), Contains("scene_00_0001.txt: no cam_dir"));
+    }
+}

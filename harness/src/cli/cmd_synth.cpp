@@ -22,8 +22,8 @@ void add_synth_command(CLI::App& app, int& exit_code) {
     c->add_option("--camera-in-marker", o.camera_in_marker, "Camera-in-marker pose file (default: PUT's for the sensor)");
     c->add_option("--frames", o.frames, "Render only the first N poses (0: all)");
     c->add_option("--seed", o.seed, "Seed of the scene and of all noise")->capture_default_str();
-    c->add_option("--layout", o.layout, "Output layout: tum, putk2, putk2-tum, icl-tum")
-        ->check(CLI::IsMember({"tum", "putk2", "putk2-tum", "icl-tum"}))
+    c->add_option("--layout", o.layout, "Output layout: tum, putk2, putk2-tum, icl-tum, icl-povray")
+        ->check(CLI::IsMember({"tum", "putk2", "putk2-tum", "icl-tum", "icl-povray"}))
         ->capture_default_str();
     c->add_option("--blur", blur, "Motion blur over the exposure: on or off")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     c->add_option("--out", out, "Output folder")->required();

@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
+#include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
 #include <chrono>
@@ -128,6 +129,47 @@ void write_icl_calibration(const SynthOptions& o, const SensorModel& sensor) {
                                            c.fx, -c.fy, c.cx, (c.height - 1) - c.cy, fmt::join(d, " ")));
 }
 
+// ICL-NUIM's POV-Ray layout, frame k: scene_00_kkkk.png (colour as rendered), scene_00_kkkk.depth (text,
+// row by row: the distance along each pixel's ray from the camera centre, metres — not z), and
+// scene_00_kkkk.txt (POV-Ray camera vectors `name = [x, y, z]';`: cam_pos; cam_dir, the optical axis;
+// cam_up, towards the top of the image). The ray of a pixel is its undistorted direction.
+void write_povray_frame(const fs::path& out, uint64_t k, const Eigen::Isometry3d& pose, const RenderedFrame& frame, const PinholeCamera& c) {
+    const std::string base = fmt::format("scene_00_{:04d}", k);
+    write_png(out / (base + ".png"), frame.color);
+    std::vector<cv::Point2f> pixels, rays;
+    for (int v = 0; v < frame.depth.rows; ++v)
+        for (int u = 0; u < frame.depth.cols; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    const cv::Matx33d K(c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1);
+    cv::undistortPoints(pixels, rays, K, cv::Mat(1, 8, CV_64F, const_cast<double*>(c.distortion.data())));
+    std::string text;
+    text.reserve(rays.size() * 10);
+    for (std::size_t i = 0; i < rays.size(); ++i) {
+        const double z = frame.depth.at<float>(static_cast<int>(i) / frame.depth.cols, static_cast<int>(i) % frame.depth.cols);
+        const double d = z * std::sqrt(1.0 + rays[i].x * rays[i].x + rays[i].y * rays[i].y);
+        text += fmt::format("{:.6f}", d);
+        text += (i + 1) % static_cast<std::size_t>(frame.depth.cols) == 0 ? '\n' : ' ';
+    }
+    metrics::write_file_atomic(out / (base + ".depth"), text);
+    const Eigen::Vector3d p = pose.translation(), dir = pose.linear().col(2), up = -pose.linear().col(1);
+    auto vec = [](const char* name, const Eigen::Vector3d& v) { return fmt::format("{} = [{}, {}, {}]';\n", name, v.x(), v.y(), v.z()); };
+    metrics::write_file_atomic(out / (base + ".txt"), vec("cam_pos", p) + vec("cam_dir", dir) + vec("cam_up", up));
+}
+
+std::string sim_rows(const Eigen::Isometry3d& T) {
+    std::string rows;
+    for (int r = 0; r < 3; ++r)
+        rows += fmt::format("{} {} {} {}\n", T(r, 0), T(r, 1), T(r, 2), T(r, 3));
+    return rows;
+}
+
+// camera.txt for the POV-Ray layout: the images are stored as rendered (fy > 0).
+void write_povray_calibration(const SynthOptions& o, const SensorModel& sensor) {
+    const PinholeCamera& c = sensor.color;
+    metrics::write_file_atomic(o.out / "camera.txt",
+                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n{} {} {} {} {}\n", c.fx, c.fy, c.cx, c.cy,
+                                           fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
+}
+
 // PUTK²'s own files: camData.txt (colour intrinsics under PUT's camera id), cameraZnacznik.txt
 // (camera in marker), trajectory.txt (raw marker poses) and, for Kinect v2, depth_camera.txt
 // (depth intrinsics, then the depth camera's pose in the colour camera frame).
@@ -156,8 +198,8 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
 }  // namespace
 
 SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t, uint64_t)>& progress) {
-    if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum" && o.layout != "icl-tum")
-        throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum, icl-tum)");
+    if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum" && o.layout != "icl-tum" && o.layout != "icl-povray")
+        throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum, icl-tum, icl-povray)");
     if (o.out.empty()) throw std::invalid_argument("--out is required");
     const SensorModel sensor = sensor_by_name(o.sensor);
     const Paths paths = load_paths(o, sensor);
@@ -175,11 +217,13 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
 
     const bool putk2 = o.layout == "putk2" || o.layout == "putk2-tum";
     const bool icl = o.layout == "icl-tum";
+    const bool povray = o.layout == "icl-povray";
     fs::create_directories(o.out);
-    if (o.layout != "putk2") {
+    if (o.layout != "putk2" && !povray) {
         fs::create_directories(o.out / "rgb");
         fs::create_directories(o.out / "depth");
     }
+    std::string gt_sim;  // icl-povray: 3×4 [R|t] per frame
     std::string rgb_list = "# color images\n# vobench synth\n# timestamp filename\n";
     std::string depth_list = "# depth maps\n# vobench synth\n# timestamp filename\n";
     std::string matched = "# frame rgb depth\n", associations;
@@ -192,6 +236,12 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         const double interval = next.t - pose.t;
         RenderedFrame frame = renderer.render(k, pose.isometry(), next.isometry(), interval > 0 ? interval : 0.1, o.blur);
         const std::string stamp = fmt::format("{:.6f}", pose.t);
+        if (povray) {
+            write_povray_frame(o.out, k, pose.isometry(), frame, sensor.color);
+            gt_sim += sim_rows(pose.isometry());
+            if (progress) progress(k + 1, count);
+            continue;
+        }
         const FrameFiles files = frame_files(o.layout, k, stamp, frame);
         rgb_list += stamp + " " + files.color + "\n";
         depth_list += stamp + " " + files.depth + "\n";
@@ -211,7 +261,9 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     if (pending.valid()) pending.get();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
-    if (o.layout == "putk2") {
+    if (povray) {
+        metrics::write_file_atomic(o.out / "synth.gt.sim", gt_sim);
+    } else if (o.layout == "putk2") {
         metrics::write_file_atomic(o.out / "matched.txt", matched);
     } else if (icl) {
         metrics::write_file_atomic(o.out / "associations.txt", associations);
@@ -219,11 +271,14 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
         metrics::write_file_atomic(o.out / "depth.txt", depth_list);
     }
-    metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
-                       putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
-                                    : "vobench synth: camera poses (camera-to-world)");
+    if (!povray) {
+        metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
+                           putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
+                                        : "vobench synth: camera poses (camera-to-world)");
+    }
     if (putk2) write_putk2_calibration(o, sensor, paths, count);
     else if (icl) write_icl_calibration(o, sensor);
+    else if (povray) write_povray_calibration(o, sensor);
     else write_tum_calibration(o, sensor, paths, count);
     const nlohmann::json meta{{"generator", "vobench synth"},
                               {"generator_version", kGeneratorVersion},
