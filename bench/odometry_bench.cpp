@@ -4,6 +4,7 @@
 // real TUM fr1/rpy sample when ../shared/data is present. Also the renderer's frames/s per sensor.
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
+#include "run/frame_cache.hpp"
 #include "run/frame_prefetcher.hpp"
 #include "synth/sequence_writer.hpp"
 
@@ -119,8 +120,30 @@ void run_reader(benchmark::State& state, const std::string& reader, const std::s
     state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
+// The same frames from the decoded-frame cache (zstd) instead of the reader.
+void run_cache(benchmark::State& state, const std::string& sensor) {
+    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-reader-" + sensor + "-tum");
+    if (!fs::exists(dir / "synth.json")) {
+        synth::SynthOptions o;
+        o.sensor = sensor;
+        o.trajectory = "explore1";
+        o.frames = 10;
+        o.out = dir;
+        synth::synthesize(o);
+    }
+    DatasetInstance d(registry().find("tum", VOBENCH_KIND_DATASET));
+    d.open(dir.string(), {});
+    const FrameCache cache(fs::temp_directory_path() / ("vobench-bench-cache-" + sensor));
+    for (uint64_t i = 0; i < d.info().frame_count; ++i) cache.store(i, d.read(i));
+    uint64_t i = 0;
+    for (auto _ : state) benchmark::DoNotOptimize(cache.load(i++ % d.info().frame_count)->frame.depth->data);
+    state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
 }  // namespace
 
+BENCHMARK_CAPTURE(run_cache, tum/kinect1_640x480, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_cache, tum/kinect2_1920x1080, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_reader, tum/kinect1_640x480, "tum", "kinect1", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_reader, tum/kinect2_1920x1080, "tum", "kinect2", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_reader, putk2/kinect1_640x480, "putk2", "kinect1", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -8,7 +8,7 @@ packages=(
   libopencv-dev libopencv-contrib-dev   # OpenCV 4.6 with rgbd and optflow
   libeigen3-dev libyaml-cpp-dev nlohmann-json3-dev
   libboost-dev libboost-filesystem-dev  # Boost.DLL, Boost.Process (1.74)
-  libcli11-dev libspdlog-dev libfmt-dev libtbb-dev
+  libcli11-dev libspdlog-dev libfmt-dev libtbb-dev libzstd-dev
   catch2 libbenchmark-dev
   binutils                              # nm, for the exported-symbol test
   clang libclang-rt-14-dev              # libFuzzer targets of the text parsers

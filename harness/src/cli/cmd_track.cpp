@@ -27,6 +27,8 @@ void add_track_command(CLI::App& app, int& exit_code) {
     c->add_option("--frames", options.max_frames, "Use only the first N frames (0: all)");
     c->add_option("--seed", options.seed, "Seed handed to the plugin")->capture_default_str();
     c->add_option("--out", out, "Output folder for trajectory.txt and timing.csv");
+    static std::string cache;
+    c->add_option("--frame-cache", cache, "Decoded-frame cache folder (zstd, keyed by reader, options and content)");
     c->add_flag("--json", json, "Print a JSON summary on stdout");
     protocol.add_to(c);
     c->callback([&exit_code] {
@@ -34,6 +36,7 @@ void add_track_command(CLI::App& app, int& exit_code) {
         if (!sensor.empty()) options.dataset_options["sensor"] = sensor;
         options.params = parse_key_values(params, "--param");
         options.protocol = protocol.build();
+        options.frame_cache = cache;
         const TrackResult r = run_track(options, PluginRegistry());
         if (!out.empty()) {
             write_track_outputs(r, out);

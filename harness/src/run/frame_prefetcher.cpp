@@ -1,5 +1,7 @@
 #include "run/frame_prefetcher.hpp"
 
+#include "run/frame_cache.hpp"
+
 namespace vobench {
 
 OwnedFrame::OwnedFrame(const vobench_frame& f) {
@@ -16,8 +18,8 @@ OwnedFrame::OwnedFrame(const vobench_frame& f) {
     frame.depth = &depth_image;
 }
 
-FramePrefetcher::FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth)
-    : dataset_(dataset), count_(count), depth_(depth == 0 ? 1 : depth), thread_([this] { run(); }) {}
+FramePrefetcher::FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth, const FrameCache* cache)
+    : dataset_(dataset), cache_(cache), count_(count), depth_(depth == 0 ? 1 : depth), thread_([this] { run(); }) {}
 
 FramePrefetcher::~FramePrefetcher() {
     {
@@ -29,6 +31,7 @@ FramePrefetcher::~FramePrefetcher() {
 }
 
 void FramePrefetcher::run() {
+    const bool from_cache = cache_ != nullptr && cache_->complete();
     for (uint64_t i = 0; i < count_; ++i) {
         {
             std::unique_lock<std::mutex> lock(mutex_);
@@ -37,7 +40,12 @@ void FramePrefetcher::run() {
         }
         std::unique_ptr<OwnedFrame> frame;
         try {
-            frame = std::make_unique<OwnedFrame>(dataset_.read(i));
+            if (from_cache) {
+                frame = cache_->load(i);
+            } else {
+                frame = std::make_unique<OwnedFrame>(dataset_.read(i));
+                if (cache_) cache_->store(i, frame->frame);
+            }
         } catch (...) {
             std::lock_guard<std::mutex> lock(mutex_);
             error_ = std::current_exception();
@@ -49,6 +57,8 @@ void FramePrefetcher::run() {
         queue_.push_back(std::move(frame));
         changed_.notify_all();
     }
+    // The whole sequence went through: the cache is complete (a partial run never marks it).
+    if (cache_ && !from_cache && count_ == dataset_.info().frame_count) cache_->mark_complete(count_);
     std::lock_guard<std::mutex> lock(mutex_);
     done_ = true;
     changed_.notify_all();

@@ -31,10 +31,14 @@ struct OwnedFrame {
     OwnedFrame& operator=(const OwnedFrame&) = delete;
 };
 
+class FrameCache;
+
 class FramePrefetcher {
 public:
-    // Reads frames [0, count) of `dataset`, at most `depth` ahead of the consumer.
-    FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth = 4);
+    // Reads frames [0, count) of `dataset`, at most `depth` ahead of the consumer. With a cache: from
+    // it when complete, else from the reader, storing each frame (and marking the cache complete when
+    // the whole sequence went through).
+    FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth = 4, const FrameCache* cache = nullptr);
     ~FramePrefetcher();
     FramePrefetcher(const FramePrefetcher&) = delete;
     FramePrefetcher& operator=(const FramePrefetcher&) = delete;
@@ -46,6 +50,7 @@ private:
     void run();
 
     DatasetInstance& dataset_;
+    const FrameCache* cache_;
     const uint64_t count_;
     const std::size_t depth_;
     std::mutex mutex_;

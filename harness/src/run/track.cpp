@@ -1,6 +1,7 @@
 #include "run/track.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "run/frame_cache.hpp"
 #include "run/frame_prefetcher.hpp"
 
 #include <fmt/format.h>
@@ -44,7 +45,10 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     result.sensor = info.sensor ? info.sensor : "";
     const uint64_t count = options.max_frames > 0 ? std::min(options.max_frames, info.frame_count) : info.frame_count;
     spdlog::info("tracking {} frames of {} ({}) with {}", count, result.sequence, result.sensor, odometry.plugin().name());
-    FramePrefetcher frames(dataset, count);  // decoding overlaps the plugin, on another thread
+    std::unique_ptr<FrameCache> cache;
+    if (!options.frame_cache.empty())
+        cache = std::make_unique<FrameCache>(options.frame_cache / sequence_key(dataset.plugin(), options.dataset_options, options.path));
+    FramePrefetcher frames(dataset, count, 4, cache.get());  // decoding overlaps the plugin, on another thread
     for (uint64_t i = 0; i < count; ++i) {
         std::unique_ptr<OwnedFrame> owned;
         try {

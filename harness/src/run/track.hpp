@@ -26,6 +26,7 @@ struct TrackOptions {
     uint64_t max_frames = 0;      // 0: all
     uint64_t seed = 1;
     metrics::Protocol protocol;
+    std::filesystem::path frame_cache;  // root of the decoded-frame cache; empty: no cache
 };
 
 struct FrameRecord {
