@@ -11,6 +11,7 @@ packages=(
   libcli11-dev libspdlog-dev libfmt-dev libtbb-dev libzstd-dev
   catch2 libbenchmark-dev
   binutils                              # nm, for the exported-symbol test
+  curl                                  # datasets/fetch.sh
   clang libclang-rt-14-dev              # libFuzzer targets of the text parsers
 )
 
