@@ -23,6 +23,9 @@
 #include "metrics/trajectory_io.hpp"
 
 #include "dataset_files.hpp"  // plugins/common
+#include "icl_files.hpp"
+
+#include "metrics/trajectory_io.hpp"
 
 #include <vobench/plugin.hpp>
 
@@ -34,32 +37,41 @@
 
 #include <cmath>
 #include <filesystem>
-#include <map>
-#include <sstream>
 
 namespace {
 
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
+// Runs a parser, turning its std::runtime_error into an I/O error status.
+template <typename F>
+auto parsed(F&& f) {
+    try {
+        return f();
+    } catch (const Error&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw Error(VOBENCH_IO_ERROR, e.what());
+    }
+}
 
 class IclReader : public vobench::sdk::Dataset {
 public:
     static vobench::sdk::PluginInfo info() {
         return {"icl_nuim",
                 "1.0.0",
-                "ICL-NUIM (Handa et al. 2014), TUM-compatible layout; images flipped so that plugins see fy > 0.",
+                "ICL-NUIM (Handa et al. 2014), TUM-compatible and POV-Ray layouts; images flipped where needed so plugins see fy > 0.",
                 "MIT",
                 "https://www.doc.ic.ac.uk/~ahanda/VaFRIC/iclnuim.html",
                 {{"fx", VOBENCH_PARAM_DOUBLE, "481.2", -1e5, 1e5, "", "focal length x, px (ICL convention; camera.txt overrides)"},
                  {"fy", VOBENCH_PARAM_DOUBLE, "-480", -1e5, 1e5, "", "focal length y, px (ICL: negative)"},
                  {"cx", VOBENCH_PARAM_DOUBLE, "319.5", -1e5, 1e5, "", "principal point x, px"},
                  {"cy", VOBENCH_PARAM_DOUBLE, "239.5", -1e5, 1e5, "", "principal point y, px (ICL convention)"},
-                 {"depth_factor", VOBENCH_PARAM_DOUBLE, "5000", 1, 1e6, "", "depth units per metre"},
+                 {"depth_factor", VOBENCH_PARAM_DOUBLE, "5000", 1, 1e6, "", "icl-tum: depth units per metre"},
                  {"frame_rate", VOBENCH_PARAM_DOUBLE, "0", 0, 1000, "", "stamps are frame / rate seconds; 0: frame indices"},
                  {"ground_truth", VOBENCH_PARAM_STRING, "", 0, 0, "",
                   "ground-truth file, *.gt.freiburg (TUM layout) or *.gt.sim (3x4 per frame); default: the folder's"},
-                 {"layout", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|icl-tum|icl-povray", "auto: associations.txt or scene_00_0000.png"},
+                 {"layout", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|icl-tum|icl-povray", "auto: scene_00_0000.png or associations.txt"},
                  {"depth_unit", VOBENCH_PARAM_DOUBLE, "1", 1e-6, 1e3, "", "icl-povray: metres per unit of the .depth files"}}};
     }
 
@@ -72,18 +84,23 @@ public:
         std::string layout = o.get_string("layout");
         if (layout == "auto") layout = fs::exists(root_ / "scene_00_0000.png") ? "icl-povray" : "icl-tum";
         povray_ = layout == "icl-povray";
-        if (povray_) list_povray_frames();
-        else parse_associations(root_ / "associations.txt");
+        if (povray_) {
+            list_povray_frames();
+        } else {
+            const fs::path list = root_ / "associations.txt";
+            for (const auto& a : parsed([&] { return vobench::icl::parse_associations(vobench::files::read_text(list), list.string()); }))
+                frames_.push_back({stamp_of(a.t_rgb), a.rgb, a.depth});
+        }
         const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
-        double k[12] = {o.get_double("fx"), o.get_double("fy"), o.get_double("cx"), o.get_double("cy")};
+        std::vector<double> k = {o.get_double("fx"), o.get_double("fy"), o.get_double("cx"), o.get_double("cy")};
         if (povray_) k[1] = std::abs(k[1]);  // poses from the camera vectors: upright images
-        int count = 4;
-        if (fs::exists(root_ / "camera.txt")) count = read_camera(root_ / "camera.txt", k);
-        set_camera(k, count, first.cols, first.rows);
+        if (fs::exists(root_ / "camera.txt"))
+            k = parsed([&] { return vobench::icl::parse_camera(vobench::files::read_text(root_ / "camera.txt"), (root_ / "camera.txt").string()); });
+        set_camera(k, first.cols, first.rows);
         if (povray_ && o.get_string("ground_truth").empty()) poses_from_camera_vectors();
         else load_ground_truth(o.get_string("ground_truth"));
         name_ = fs::absolute(root_).lexically_normal().filename().string();
-        info_ = {sizeof(info_), name_.c_str(), "icl_nuim", &camera_, first.cols, first.rows, povray_ ? 1.0 : 1.0 / depth_factor_,
+        info_ = {sizeof(info_), name_.c_str(), "icl_nuim", &camera_, first.cols, first.rows, depth_scale(),
                  frames_.size(), ground_truth_.empty() ? nullptr : ground_truth_.data(), ground_truth_.size() / 8};
     }
 
@@ -96,9 +113,9 @@ public:
         if (index >= frames_.size())
             throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(frames_.size()) + " frames)");
         const Frame& f = frames_[index];
-        cv::Mat color = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
-        cv::Mat depth = povray_ ? read_ray_depth(root_ / f.depth, color.size()) : vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);
-        if (!povray_) vobench::files::require_depth16(depth, (root_ / f.depth));
+        const cv::Mat color = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
+        const cv::Mat depth = povray_ ? ray_depth(root_ / f.depth, color.size()) : vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);
+        if (!povray_) vobench::files::require_depth16(depth, root_ / f.depth);
         if (color.cols != camera_.width || color.rows != camera_.height || depth.size() != color.size())
             throw Error(VOBENCH_IO_ERROR, "frame " + std::to_string(index) + ": colour " + (root_ / f.color).string() + " is " +
                                               std::to_string(color.cols) + "x" + std::to_string(color.rows) + ", depth is " +
@@ -113,7 +130,7 @@ public:
         }
         color_image_ = vobench::files::image_of(color_, VOBENCH_PIXEL_BGR8);
         depth_image_ = vobench::files::image_of(depth_, povray_ ? VOBENCH_PIXEL_DEPTH_F32 : VOBENCH_PIXEL_DEPTH_U16);
-        frame_ = {sizeof(vobench_frame), index, f.stamp, f.stamp, &color_image_, &depth_image_, povray_ ? 1.0 : 1.0 / depth_factor_};
+        frame_ = {sizeof(vobench_frame), index, f.stamp, f.stamp, &color_image_, &depth_image_, depth_scale()};
         return frame_;
     }
 
@@ -123,47 +140,8 @@ private:
         std::string color, depth;
     };
 
-
     double stamp_of(double index) const { return rate_ > 0 ? index / rate_ : index; }
-
-    // associations.txt: `t_depth depth/i.png t_rgb rgb/i.png` per line.
-    void parse_associations(const fs::path& path) {
-        std::istringstream in(vobench::files::read_text(path));
-        std::string line;
-        std::size_t number = 0;
-        while (std::getline(in, line)) {
-            ++number;
-            if (!line.empty() && line.back() == '\r') line.pop_back();
-            if (line.find_first_not_of(" \t") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-            std::istringstream fields(line);
-            double t_depth, t_rgb;
-            std::string depth, rgb, extra;
-            if (!(fields >> t_depth >> depth >> t_rgb >> rgb) || (fields >> extra))
-                throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(number) + ": expected `t_depth depth_file t_rgb rgb_file`");
-            if (!frames_.empty() && stamp_of(t_rgb) <= frames_.back().stamp)
-                throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(number) + ": stamps must increase");
-            frames_.push_back({stamp_of(t_rgb), rgb, depth});
-        }
-        if (frames_.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": no frames (empty sequence)");
-    }
-
-    static int read_camera(const fs::path& path, double* k) {
-        std::istringstream in(vobench::files::read_text(path));
-        std::string line;
-        std::size_t number = 0;
-        while (std::getline(in, line)) {
-            ++number;
-            if (line.empty() || line[0] == '#') continue;
-            std::istringstream fields(line);
-            int count = 0;
-            double v;
-            while (count < 12 && fields >> v) k[count++] = v;
-            if (count < 4 || !(fields >> std::ws).eof())
-                throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(number) + ": expected `fx fy cx cy` and up to 8 distortion coefficients");
-            return count;
-        }
-        throw Error(VOBENCH_IO_ERROR, path.string() + ": no intrinsics line");
-    }
+    double depth_scale() const { return povray_ ? 1.0 : 1.0 / depth_factor_; }
 
     void list_povray_frames() {
         for (int k = 0;; ++k) {
@@ -174,8 +152,8 @@ private:
         if (frames_.empty()) throw Error(VOBENCH_IO_ERROR, root_.string() + ": no scene_00_0000.png (empty sequence)");
     }
 
-    // Ray distances (text) → z in metres, via each pixel's undistorted ray.
-    cv::Mat read_ray_depth(const fs::path& path, cv::Size size) {
+    // Ray distances → z in metres, through each pixel's undistorted ray (stored-image geometry).
+    cv::Mat ray_depth(const fs::path& path, cv::Size size) {
         if (ray_norm_.empty()) {
             std::vector<cv::Point2f> pixels, rays;
             for (int v = 0; v < size.height; ++v)
@@ -187,60 +165,34 @@ private:
                 ray_norm_.at<float>(static_cast<int>(i) / size.width, static_cast<int>(i) % size.width) =
                     static_cast<float>(std::sqrt(1.0 + rays[i].x * rays[i].x + rays[i].y * rays[i].y));
         }
-        const std::string text = vobench::files::read_text(path);
+        const std::vector<float> d = parsed([&] {
+            return vobench::icl::parse_ray_depth(vobench::files::read_text(path), path.string(), static_cast<std::size_t>(size.area()));
+        });
         cv::Mat z(size, CV_32F);
-        const char* p = text.c_str();
-        const int total = size.width * size.height;
-        for (int i = 0; i < total; ++i) {
-            char* end = nullptr;
-            const double d = std::strtod(p, &end);
-            if (end == p || !std::isfinite(d) || d < 0)
-                throw Error(VOBENCH_IO_ERROR, path.string() + ": value " + std::to_string(i + 1) + " of " + std::to_string(total) +
-                                                  (end == p ? " is missing or not a number" : " is not a non-negative finite number"));
-            z.at<float>(i / size.width, i % size.width) = static_cast<float>(d * depth_unit_) / ray_norm_.at<float>(i / size.width, i % size.width);
-            p = end;
-        }
-        while (*p == ' ' || *p == '\n' || *p == '\r' || *p == '\t') ++p;
-        if (*p) throw Error(VOBENCH_IO_ERROR, path.string() + ": more than " + std::to_string(total) + " values");
+        for (int i = 0; i < size.area(); ++i)
+            z.at<float>(i / size.width, i % size.width) = static_cast<float>(d[static_cast<std::size_t>(i)] * depth_unit_) / ray_norm_.at<float>(i / size.width, i % size.width);
         return z;
     }
 
-    // Pose from POV-Ray camera vectors (see the header).
+    // POV-Ray camera vectors: z = cam_dir, y = −(cam_up ⊥ z) (image y grows downwards), x = y × z.
     void poses_from_camera_vectors() {
-        for (std::size_t i = 0; i < frames_.size(); ++i) {
-            const fs::path path = root_ / (frames_[i].color.substr(0, frames_[i].color.size() - 4) + ".txt");
+        for (const Frame& f : frames_) {
+            const fs::path path = root_ / (f.color.substr(0, f.color.size() - 4) + ".txt");
             if (!fs::exists(path)) continue;  // a frame without a pose
-            std::map<std::string, Eigen::Vector3d> vectors;
-            std::istringstream in(vobench::files::read_text(path));
-            std::string line;
-            for (std::size_t n = 1; std::getline(in, line); ++n) {
-                const auto eq = line.find('='), open = line.find('['), close = line.find(']');
-                if (eq == std::string::npos) continue;
-                std::string name = line.substr(0, eq);
-                name.erase(name.find_last_not_of(" \t") + 1);
-                if (open == std::string::npos || close == std::string::npos || close < open) continue;  // a scalar (cam_angle)
-                std::istringstream values(line.substr(open + 1, close - open - 1));
-                Eigen::Vector3d v;
-                char comma;
-                if (!(values >> v.x() >> comma >> v.y() >> comma >> v.z()))
-                    throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(n) + ": expected `" + name + " = [x, y, z]';`");
-                vectors[name] = v;
-            }
+            auto v = parsed([&] { return vobench::icl::parse_camera_vectors(vobench::files::read_text(path), path.string()); });
             for (const char* needed : {"cam_pos", "cam_dir", "cam_up"})
-                if (!vectors.count(needed)) throw Error(VOBENCH_IO_ERROR, path.string() + ": no " + std::string(needed));
-            const Eigen::Vector3d z = vectors["cam_dir"].normalized();
-            const Eigen::Vector3d up = vectors["cam_up"] - vectors["cam_up"].dot(z) * z;
-            if (up.norm() < 1e-9) throw Error(VOBENCH_IO_ERROR, path.string() + ": cam_up is parallel to cam_dir");
+                if (!v.count(needed)) throw Error(VOBENCH_IO_ERROR, path.string() + ": no " + std::string(needed));
+            const Eigen::Vector3d z = v["cam_dir"].normalized();
+            const Eigen::Vector3d up = v["cam_up"] - v["cam_up"].dot(z) * z;
+            if (!(up.norm() > 1e-9) || !z.allFinite()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cam_up is parallel to cam_dir (or zero)");
             const Eigen::Vector3d y = -up.normalized(), x = y.cross(z);
             Eigen::Matrix3d R;
             R << x, y, z;
-            const Eigen::Quaterniond q(R);
-            const Eigen::Vector3d t = vectors["cam_pos"];
-            ground_truth_.insert(ground_truth_.end(), {frames_[i].stamp, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w()});
+            add_pose(f.stamp, v["cam_pos"], Eigen::Quaterniond(R));
         }
     }
 
-    void set_camera(const double* k, int count, int width, int height) {
+    void set_camera(const std::vector<double>& k, int width, int height) {
         flip_ = k[1] < 0;
         camera_.struct_size = sizeof(camera_);
         camera_.width = width;
@@ -249,8 +201,8 @@ private:
         camera_.fy = flip_ ? -k[1] : k[1];
         camera_.cx = k[2];
         camera_.cy = flip_ ? (height - 1) - k[3] : k[3];
-        camera_.distortion_count = count - 4;
-        for (int i = 0; i < count - 4; ++i) camera_.distortion[i] = k[4 + i];
+        camera_.distortion_count = static_cast<int32_t>(k.size() - 4);
+        for (std::size_t i = 4; i < k.size(); ++i) camera_.distortion[i - 4] = k[i];
         if (flip_ && camera_.distortion_count > 2) camera_.distortion[2] = -camera_.distortion[2];  // p1 is odd in y
         bool any = false;
         for (int i = 0; i < camera_.distortion_count; ++i) any = any || camera_.distortion[i] != 0;
@@ -267,37 +219,23 @@ private:
             }
         }
         if (file.empty()) return;  // no ground truth: tracking still works
-        if (file.extension() == ".sim") return load_sim(file);
+        if (file.extension() == ".sim") {
+            const auto poses = parsed([&] { return vobench::icl::parse_sim(vobench::files::read_text(file), file.string()); });
+            for (std::size_t i = 0; i < poses.size(); ++i)
+                add_pose(stamp_of(static_cast<double>(i)), poses[i].translation(), Eigen::Quaterniond(poses[i].linear()));
+            return;
+        }
         try {
             const auto gt = vobench::metrics::read_trajectory(file);
             for (const std::string& w : gt.warnings) host().warn(w);
-            for (const auto& p : gt.poses)
-                ground_truth_.insert(ground_truth_.end(), {stamp_of(p.t), p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w()});
+            for (const auto& p : gt.poses) add_pose(stamp_of(p.t), p.p, p.q);
         } catch (const vobench::metrics::TrajectoryError& e) {
             throw Error(VOBENCH_IO_ERROR, e.what());
         }
     }
 
-    // <name>.gt.sim: per frame three lines, the rows of [R|t] (camera-to-world).
-    void load_sim(const fs::path& path) {
-        std::istringstream in(vobench::files::read_text(path));
-        std::vector<double> v;
-        std::string token;
-        while (in >> token) {
-            char* end = nullptr;
-            v.push_back(std::strtod(token.c_str(), &end));
-            if (*end != '\0' || !std::isfinite(v.back()))
-                throw Error(VOBENCH_IO_ERROR, path.string() + ": value " + std::to_string(v.size()) + " ('" + token + "') is not a number");
-        }
-        if (v.size() % 12 != 0) throw Error(VOBENCH_IO_ERROR, path.string() + ": " + std::to_string(v.size()) + " values, not 12 per frame");
-        for (std::size_t f = 0; f * 12 < v.size(); ++f) {
-            Eigen::Matrix3d R;
-            R << v[f * 12 + 0], v[f * 12 + 1], v[f * 12 + 2], v[f * 12 + 4], v[f * 12 + 5], v[f * 12 + 6], v[f * 12 + 8], v[f * 12 + 9], v[f * 12 + 10];
-            if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-3)
-                throw Error(VOBENCH_IO_ERROR, path.string() + ": frame " + std::to_string(f) + " is not a rotation");
-            const Eigen::Quaterniond q = Eigen::Quaterniond(R).normalized();
-            ground_truth_.insert(ground_truth_.end(), {stamp_of(static_cast<double>(f)), v[f * 12 + 3], v[f * 12 + 7], v[f * 12 + 11], q.x(), q.y(), q.z(), q.w()});
-        }
+    void add_pose(double t, const Eigen::Vector3d& p, const Eigen::Quaterniond& q) {
+        ground_truth_.insert(ground_truth_.end(), {t, p.x(), p.y(), p.z(), q.x(), q.y(), q.z(), q.w()});
     }
 
     fs::path root_;
