@@ -39,6 +39,21 @@ Sequence load(const fs::path& path, const ParamMap& options) {
     return s;
 }
 
+// A synthetic explore1 sequence rendered once into the temp folder (kept between runs).
+fs::path synthetic(const std::string& name, const std::string& sensor, const std::string& layout, uint64_t frames) {
+    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-" + name);
+    if (!fs::exists(dir / "synth.json")) {
+        synth::SynthOptions o;
+        o.sensor = sensor;
+        o.trajectory = "explore1";
+        o.frames = frames;
+        o.layout = layout;
+        o.out = dir;
+        synth::synthesize(o);
+    }
+    return dir;
+}
+
 const Sequence& sequence(const std::string& name) {
     static std::map<std::string, Sequence> cache;
     auto it = cache.find(name);
@@ -48,17 +63,8 @@ const Sequence& sequence(const std::string& name) {
         const fs::path p = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
         return cache[name] = fs::exists(p) ? load(p, {{"intrinsics", "fr1"}}) : Sequence{};
     }
-    // "kinect1" / "kinect2": 40 frames of explore1, rendered once per run into the temp folder.
-    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-" + name);
-    if (!fs::exists(dir / "synth.json")) {
-        synth::SynthOptions o;
-        o.sensor = name;
-        o.trajectory = "explore1";
-        o.frames = 40;
-        o.out = dir;
-        synth::synthesize(o);
-    }
-    return cache[name] = load(dir, {});
+    // "kinect1" / "kinect2": 40 frames of explore1.
+    return cache[name] = load(synthetic(name, name, "tum", 40), {});
 }
 
 void run_odometry(benchmark::State& state, const std::string& plugin, const std::string& data) {
@@ -103,16 +109,7 @@ void run_synth(benchmark::State& state, const std::string& sensor) {
 
 // A reader alone: frames/s of open-once, read every frame (decode, rescale or register), 10 frames.
 void run_reader(benchmark::State& state, const std::string& reader, const std::string& sensor, const std::string& layout) {
-    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-reader-" + sensor + "-" + layout);
-    if (!fs::exists(dir / "synth.json")) {
-        synth::SynthOptions o;
-        o.sensor = sensor;
-        o.trajectory = "explore1";
-        o.frames = 10;
-        o.layout = layout;
-        o.out = dir;
-        synth::synthesize(o);
-    }
+    const fs::path dir = synthetic("reader-" + sensor + "-" + layout, sensor, layout, 10);
     DatasetInstance d(registry().find(reader, VOBENCH_KIND_DATASET));
     d.open(dir.string(), {});
     uint64_t i = 0;
@@ -122,15 +119,7 @@ void run_reader(benchmark::State& state, const std::string& reader, const std::s
 
 // The same frames from the decoded-frame cache (zstd) instead of the reader.
 void run_cache(benchmark::State& state, const std::string& sensor) {
-    const fs::path dir = fs::temp_directory_path() / ("vobench-bench-reader-" + sensor + "-tum");
-    if (!fs::exists(dir / "synth.json")) {
-        synth::SynthOptions o;
-        o.sensor = sensor;
-        o.trajectory = "explore1";
-        o.frames = 10;
-        o.out = dir;
-        synth::synthesize(o);
-    }
+    const fs::path dir = synthetic("reader-" + sensor + "-tum", sensor, "tum", 10);
     DatasetInstance d(registry().find("tum", VOBENCH_KIND_DATASET));
     d.open(dir.string(), {});
     const FrameCache cache(fs::temp_directory_path() / ("vobench-bench-cache-" + sensor));

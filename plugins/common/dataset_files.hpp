@@ -3,6 +3,7 @@
 // vobench::sdk::Error(VOBENCH_IO_ERROR) naming the file.
 #pragma once
 
+#include <vobench/plugin.hpp>
 #include <vobench/vobench_plugin.h>
 
 #include <opencv2/core.hpp>
@@ -22,5 +23,17 @@ void require_depth16(const cv::Mat& depth, const std::filesystem::path& path);
 
 // The ABI view of a matrix; valid as long as `m` keeps its pixels.
 vobench_image image_of(const cv::Mat& m, vobench_pixel_format format);
+
+// Runs a parser, turning its std::runtime_error (a message naming file and line) into an I/O error.
+template <typename F>
+auto parsed(F&& parse) {
+    try {
+        return parse();
+    } catch (const sdk::Error&) {
+        throw;
+    } catch (const std::runtime_error& e) {
+        throw sdk::Error(VOBENCH_IO_ERROR, e.what());
+    }
+}
 
 }  // namespace vobench::files

@@ -43,16 +43,6 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-// Runs a parser, turning its std::runtime_error into an I/O error status.
-template <typename F>
-auto parsed(F&& f) {
-    try {
-        return f();
-    } catch (const Error&) {
-        throw;
-    } catch (const std::runtime_error& e) {
-        throw Error(VOBENCH_IO_ERROR, e.what());
-    }
 }
 
 class IclReader : public vobench::sdk::Dataset {
@@ -88,14 +78,14 @@ public:
             list_povray_frames();
         } else {
             const fs::path list = root_ / "associations.txt";
-            for (const auto& a : parsed([&] { return vobench::icl::parse_associations(vobench::files::read_text(list), list.string()); }))
+            for (const auto& a : vobench::files::parsed([&] { return vobench::icl::parse_associations(vobench::files::read_text(list), list.string()); }))
                 frames_.push_back({stamp_of(a.t_rgb), a.rgb, a.depth});
         }
         const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
         std::vector<double> k = {o.get_double("fx"), o.get_double("fy"), o.get_double("cx"), o.get_double("cy")};
         if (povray_) k[1] = std::abs(k[1]);  // poses from the camera vectors: upright images
         if (fs::exists(root_ / "camera.txt"))
-            k = parsed([&] { return vobench::icl::parse_camera(vobench::files::read_text(root_ / "camera.txt"), (root_ / "camera.txt").string()); });
+            k = vobench::files::parsed([&] { return vobench::icl::parse_camera(vobench::files::read_text(root_ / "camera.txt"), (root_ / "camera.txt").string()); });
         set_camera(k, first.cols, first.rows);
         if (povray_ && o.get_string("ground_truth").empty()) poses_from_camera_vectors();
         else load_ground_truth(o.get_string("ground_truth"));
@@ -165,7 +155,7 @@ private:
                 ray_norm_.at<float>(static_cast<int>(i) / size.width, static_cast<int>(i) % size.width) =
                     static_cast<float>(std::sqrt(1.0 + rays[i].x * rays[i].x + rays[i].y * rays[i].y));
         }
-        const std::vector<float> d = parsed([&] {
+        const std::vector<float> d = vobench::files::parsed([&] {
             return vobench::icl::parse_ray_depth(vobench::files::read_text(path), path.string(), static_cast<std::size_t>(size.area()));
         });
         cv::Mat z(size, CV_32F);
@@ -179,7 +169,7 @@ private:
         for (const Frame& f : frames_) {
             const fs::path path = root_ / (f.color.substr(0, f.color.size() - 4) + ".txt");
             if (!fs::exists(path)) continue;  // a frame without a pose
-            auto v = parsed([&] { return vobench::icl::parse_camera_vectors(vobench::files::read_text(path), path.string()); });
+            auto v = vobench::files::parsed([&] { return vobench::icl::parse_camera_vectors(vobench::files::read_text(path), path.string()); });
             for (const char* needed : {"cam_pos", "cam_dir", "cam_up"})
                 if (!v.count(needed)) throw Error(VOBENCH_IO_ERROR, path.string() + ": no " + std::string(needed));
             const Eigen::Vector3d z = v["cam_dir"].normalized();
@@ -220,7 +210,7 @@ private:
         }
         if (file.empty()) return;  // no ground truth: tracking still works
         if (file.extension() == ".sim") {
-            const auto poses = parsed([&] { return vobench::icl::parse_sim(vobench::files::read_text(file), file.string()); });
+            const auto poses = vobench::files::parsed([&] { return vobench::icl::parse_sim(vobench::files::read_text(file), file.string()); });
             for (std::size_t i = 0; i < poses.size(); ++i)
                 add_pose(stamp_of(static_cast<double>(i)), poses[i].translation(), Eigen::Quaterniond(poses[i].linear()));
             return;

@@ -150,17 +150,6 @@ private:
     };
 
 
-    // Runs a parser, turning its std::runtime_error into an I/O error status.
-    template <typename F>
-    static auto parsed(F&& f) {
-        try {
-            return f();
-        } catch (const Error&) {
-            throw;
-        } catch (const std::runtime_error& e) {
-            throw Error(VOBENCH_IO_ERROR, e.what());
-        }
-    }
 
     void load_frames(const vobench::sdk::Params& o) {
         std::string layout = o.get_string("layout");
@@ -169,21 +158,21 @@ private:
         if (layout.empty()) throw Error(VOBENCH_IO_ERROR, root_.string() + ": neither matched.txt nor rgb.txt: not a PUTK² sequence");
         if (layout == "putk2") {
             const fs::path list = root_ / "matched.txt";
-            for (const auto& m : parsed([&] { return vobench::putk2::parse_matched(vobench::files::read_text(list), list.string()); })) {
+            for (const auto& m : vobench::files::parsed([&] { return vobench::putk2::parse_matched(vobench::files::read_text(list), list.string()); })) {
                 const double t = static_cast<double>(m.id) / rate_;
                 frames_.push_back({t, t, m.color, m.depth});
             }
             return;
         }
         const fs::path rgb_path = root_ / "rgb.txt", depth_path = root_ / "depth.txt";
-        const auto rgb = parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(rgb_path), rgb_path.string()); });
-        const auto depth = parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(depth_path), depth_path.string()); });
+        const auto rgb = vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(rgb_path), rgb_path.string()); });
+        const auto depth = vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(depth_path), depth_path.string()); });
         std::vector<double> a, b;
         for (const auto& e : rgb) a.push_back(e.stamp);
         for (const auto& e : depth) b.push_back(e.stamp);
         vobench::metrics::AssociationOptions assoc;
         assoc.max_difference = o.get_double("max_difference");
-        const auto matches = parsed([&] { return vobench::metrics::associate(a, b, assoc).matches; });
+        const auto matches = vobench::files::parsed([&] { return vobench::metrics::associate(a, b, assoc).matches; });
         for (const auto& m : matches) frames_.push_back({rgb[m.first].stamp, depth[m.second].stamp, rgb[m.first].path, depth[m.second].path});
     }
 
@@ -194,7 +183,7 @@ private:
         if (id.empty()) id = sensor_ == "kinect1" ? kPutKinect1.id : kPutKinect2.id;
         vobench::putk2::CameraCalibration cal = sensor_ == "kinect1" ? kPutKinect1 : kPutKinect2;
         if (!file.empty()) {
-            const auto cameras = parsed([&] { return vobench::putk2::parse_cam_data(vobench::files::read_text(file), file); });
+            const auto cameras = vobench::files::parsed([&] { return vobench::putk2::parse_cam_data(vobench::files::read_text(file), file); });
             bool found = false;
             std::string ids;
             for (const auto& c : cameras) {
@@ -220,7 +209,7 @@ private:
             std::string depth_file = o.get_string("depth_camera");
             if (depth_file.empty() && fs::exists(root_ / "depth_camera.txt")) depth_file = (root_ / "depth_camera.txt").string();
             if (!depth_file.empty()) {
-                depth_camera_ = parsed([&] { return vobench::putk2::parse_depth_camera(vobench::files::read_text(depth_file), depth_file); });
+                depth_camera_ = vobench::files::parsed([&] { return vobench::putk2::parse_depth_camera(vobench::files::read_text(depth_file), depth_file); });
             } else {
                 // Nominal Kinect v2 depth camera (≈70°×60°), 5.2 cm beside the colour camera.
                 depth_camera_ = {365.5, 365.5, 255.5, 211.5, Eigen::Isometry3d::Identity()};
@@ -240,9 +229,9 @@ private:
             ro.format = vobench::metrics::TrajectoryFormat::Putk2Raw;
             file = root_ / "trajectory.txt";
             const std::string cim = o.get_string("camera_in_marker").empty() ? (root_ / "cameraZnacznik.txt").string() : o.get_string("camera_in_marker");
-            ro.camera_in_marker = parsed([&] { return vobench::metrics::read_camera_in_marker(cim); });
+            ro.camera_in_marker = vobench::files::parsed([&] { return vobench::metrics::read_camera_in_marker(cim); });
         }
-        const auto gt = parsed([&] { return vobench::metrics::read_trajectory(file, ro); });
+        const auto gt = vobench::files::parsed([&] { return vobench::metrics::read_trajectory(file, ro); });
         for (const std::string& w : gt.warnings) host().warn(w);
         for (const auto& p : gt.poses)  // frame indices → seconds
             ground_truth_.insert(ground_truth_.end(), {p.t / rate_, p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w()});
