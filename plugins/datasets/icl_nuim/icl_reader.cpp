@@ -43,8 +43,6 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-}
-
 class IclReader : public vobench::sdk::Dataset {
 public:
     static vobench::sdk::PluginInfo info() {

@@ -149,8 +149,6 @@ private:
         std::string color, depth;
     };
 
-
-
     void load_frames(const vobench::sdk::Params& o) {
         std::string layout = o.get_string("layout");
         if (layout == "auto")
