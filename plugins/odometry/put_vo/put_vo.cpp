@@ -46,7 +46,7 @@ public:
                  {"redetect_below", VOBENCH_PARAM_INT, "150", 0, 5000, "", "detect new features when fewer are tracked"},
                  {"keyframe_interval", VOBENCH_PARAM_INT, "4", 1, 100, "", "a new key frame every n frames (the paper's n)"},
                  {"lk_window", VOBENCH_PARAM_INT, "7", 3, 61, "", "Lucas-Kanade window, px (odd)"},
-                 {"lk_levels", VOBENCH_PARAM_INT, "3", 0, 8, "", "Lucas-Kanade pyramid levels above the base"},
+                 {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
                  {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
@@ -278,7 +278,7 @@ private:
     cv::Matx33d K_;
     cv::Mat dist_;
     std::unique_ptr<put_vo::GridDetector> detector_;
-    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 3, min_inliers_ = 10;
+    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
     bool estimate_every_frame_ = true;
