@@ -5,7 +5,7 @@ BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?=
 
-.PHONY: all deps configure build test test-long demo clean
+.PHONY: all deps configure build app test test-long demo clean
 
 all: build
 
@@ -21,6 +21,10 @@ configure: deps $(BUILD_DIR)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD_DIR) -j $(JOBS)
 
+# The CLI and the plugins only: all the demo needs.
+app: configure
+	cmake --build $(BUILD_DIR) -j $(JOBS) --target app
+
 # Fast by default; checks that take minutes carry the CTest label `long`.
 test: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE long
@@ -28,7 +32,7 @@ test: build
 test-long: build
 	cd $(BUILD_DIR) && ctest --output-on-failure -L long
 
-demo: build
+demo: app
 	./scripts/demo.sh $(BUILD_DIR)
 
 clean:

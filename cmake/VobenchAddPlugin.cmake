@@ -28,6 +28,7 @@ function(vobench_add_plugin target)
     VISIBILITY_INLINES_HIDDEN ON
     LINK_DEPENDS "${_VOBENCH_PLUGIN_MAP}")
   target_link_options(${target} PRIVATE "LINKER:-z,defs" "LINKER:--version-script=${_VOBENCH_PLUGIN_MAP}")
+  set_property(GLOBAL APPEND PROPERTY VOBENCH_PLUGIN_TARGETS ${target})
   if(DEFINED VOBENCH_PLUGIN_OUTPUT_DIR)
     set_target_properties(${target} PROPERTIES LIBRARY_OUTPUT_DIRECTORY "${VOBENCH_PLUGIN_OUTPUT_DIR}")
   endif()
