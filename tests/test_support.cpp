@@ -1,5 +1,7 @@
 #include "test_support.hpp"
 
+#include "abi/instances.hpp"
+
 #include <catch2/catch.hpp>
 
 #include <array>
@@ -35,6 +37,17 @@ TempDir::TempDir() {
 TempDir::~TempDir() {
     std::error_code ec;
     fs::remove_all(path_, ec);
+}
+
+std::string read_all_error(const fs::path& plugin, const fs::path& sequence, const std::map<std::string, std::string>& options) {
+    try {
+        DatasetInstance d(PluginLibrary::load(plugin));
+        d.open(sequence.string(), options);
+        for (uint64_t i = 0; i < d.info().frame_count; ++i) d.read(i);
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+    return "";
 }
 
 int run_command(const std::string& command, std::string& out) {

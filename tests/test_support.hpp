@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -41,6 +42,10 @@ struct TinyFrame {
 
 // A 1×1 pinhole camera to go with it.
 inline const vobench_camera kTinyCamera{sizeof(vobench_camera), 1, 1, 1.0, 1.0, 0.0, 0.0, VOBENCH_DISTORTION_NONE, 0, {0}};
+
+// Opens `sequence` with the reader at `plugin` and reads every frame; the error message, or "".
+std::string read_all_error(const std::filesystem::path& plugin, const std::filesystem::path& sequence,
+                           const std::map<std::string, std::string>& options = {});
 
 // Runs a shell command, returns its exit status and stdout.
 int run_command(const std::string& command, std::string& out);

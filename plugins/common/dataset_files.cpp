@@ -37,6 +37,11 @@ void require_depth16(const cv::Mat& depth, const std::filesystem::path& path) {
                                           (depth.depth() == CV_8U ? "8-bit" : "another type"));
 }
 
+void require_frame_index(uint64_t index, std::size_t count) {
+    if (index >= count)
+        throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(count) + " frames)");
+}
+
 vobench_image image_of(const cv::Mat& m, vobench_pixel_format format) {
     return {sizeof(vobench_image), m.cols, m.rows, static_cast<int32_t>(m.step[0]), format, m.data};
 }

@@ -21,6 +21,9 @@ cv::Mat load_image(const std::filesystem::path& path, int imread_flags);
 // Throws unless `depth` is 16-bit single-channel ("found 8-bit" when it is 8-bit).
 void require_depth16(const cv::Mat& depth, const std::filesystem::path& path);
 
+// Throws VOBENCH_OUT_OF_RANGE "frame I is past the end (N frames)" unless index < count.
+void require_frame_index(uint64_t index, std::size_t count);
+
 // The ABI view of a matrix; valid as long as `m` keeps its pixels.
 vobench_image image_of(const cv::Mat& m, vobench_pixel_format format);
 

@@ -27,16 +27,7 @@ fs::path render(const fs::path& root, const std::string& layout) {
     return o.out;
 }
 
-std::string open_error(const fs::path& dir) {
-    try {
-        DatasetInstance d(PluginLibrary::load(test::plugin("icl_nuim")));
-        d.open(dir.string(), {});
-        for (uint64_t i = 0; i < d.info().frame_count; ++i) d.read(i);
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string open_error(const fs::path& dir) { return test::read_all_error(test::plugin("icl_nuim"), dir); }
 
 }  // namespace
 

@@ -43,16 +43,7 @@ cv::Mat color_of(const vobench_frame& f) {
     return cv::Mat(f.color->height, f.color->width, CV_8UC3, const_cast<void*>(f.color->data), static_cast<std::size_t>(f.color->stride_bytes)).clone();
 }
 
-std::string open_error(const fs::path& dir, const ParamMap& options = {}) {
-    try {
-        DatasetInstance d(reader("putk2"));
-        d.open(dir.string(), options);
-        for (uint64_t i = 0; i < d.info().frame_count; ++i) d.read(i);
-    } catch (const std::exception& e) {
-        return e.what();
-    }
-    return "";
-}
+std::string open_error(const fs::path& dir, const ParamMap& options = {}) { return test::read_all_error(test::plugin("putk2"), dir, options); }
 
 }  // namespace
 

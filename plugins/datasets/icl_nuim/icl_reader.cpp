@@ -98,8 +98,7 @@ public:
     }
 
     const vobench_frame& read_frame(uint64_t index) override {
-        if (index >= frames_.size())
-            throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(frames_.size()) + " frames)");
+        vobench::files::require_frame_index(index, frames_.size());
         const Frame& f = frames_[index];
         const cv::Mat color = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
         const cv::Mat depth = povray_ ? ray_depth(root_ / f.depth, color.size()) : vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);

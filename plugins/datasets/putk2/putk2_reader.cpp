@@ -101,8 +101,7 @@ public:
     }
 
     const vobench_frame& read_frame(uint64_t index) override {
-        if (index >= frames_.size())
-            throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(frames_.size()) + " frames)");
+        vobench::files::require_frame_index(index, frames_.size());
         const Frame& f = frames_[index];
         color_ = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
         const fs::path depth_path = root_ / f.depth;

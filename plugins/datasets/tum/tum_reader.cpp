@@ -122,9 +122,7 @@ public:
     }
 
     const vobench_frame& read_frame(uint64_t index) override {
-        if (index >= pairs_.size())
-            throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" +
-                                                  std::to_string(pairs_.size()) + " frames)");
+        vobench::files::require_frame_index(index, pairs_.size());
         const Pair& pair = pairs_[index];
         const fs::path color_path = root_ / pair.color.path, depth_path = root_ / pair.depth.path;
         color_ = vobench::files::load_image(color_path, cv::IMREAD_COLOR);
