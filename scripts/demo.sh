@@ -7,4 +7,4 @@ echo "== plugins"
 "$build/bin/vobench" plugins list
 echo
 echo "== the main job: Kinect v1 vs Kinect v2, put_vo and the baselines (synthetic data rendered once, then cached)"
-time "$build/bin/vobench" demo --config configs/quickstart.yaml
+time "$build/bin/vobench" run configs/quickstart.yaml --resume -j "$(nproc)"

@@ -4,7 +4,10 @@
  */
 #include <vobench/vobench_plugin.h>
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #define FAULT_NO_ENTRY 1
 #define FAULT_WRONG_ABI 2
@@ -15,6 +18,12 @@
 #define FAULT_SEGFAULT 7
 #define FAULT_HANG 8
 #define FAULT_EXIT 9
+/* The sweep's faults strike at frame 3, so that frames 0-2 show the partial trajectory kept. */
+#define FAULT_ABORT 10
+#define FAULT_MEMORY 11
+#define FAULT_NAN_POSE 12
+#define FAULT_ERROR_STATUS 13
+#define FAULT_STDOUT_GARBAGE 14
 
 struct vobench_odometry {
     int unused;
@@ -43,6 +52,39 @@ static vobench_status f_process(vobench_odometry* self, const vobench_frame* fra
     }
 #elif FAULT == FAULT_EXIT
     exit(3);
+#elif FAULT == FAULT_ABORT
+    if (frame->index == 3) abort();
+#elif FAULT == FAULT_MEMORY
+    if (frame->index == 3) {
+        /* Touch 64 MB at a time until someone stops us; give up (an error) at 8 GB so a broken
+         * memory limit cannot take the machine down. */
+        static char* volatile keep; /* the blocks stay reachable: the allocation cannot be optimised away */
+        size_t total = 0;
+        while (total < ((size_t)8 << 30)) {
+            char* block = (char*)malloc((size_t)64 << 20);
+            if (block) memset(block, 1, (size_t)64 << 20);
+            keep = block;
+            total += (size_t)64 << 20;
+        }
+        return VOBENCH_ERROR;
+    }
+#elif FAULT == FAULT_NAN_POSE
+    if (frame->index == 3) {
+        pose->qw = 1.0;
+        pose->tx = NAN;
+        *status = VOBENCH_TRACKING_OK;
+        return VOBENCH_OK;
+    }
+#elif FAULT == FAULT_ERROR_STATUS
+    if (frame->index == 3) return VOBENCH_ERROR;
+#elif FAULT == FAULT_STDOUT_GARBAGE
+    {
+        /* Binary and text noise on both streams: the harness must not read its results from them. */
+        static const char noise[] = "\x00\xff{\"status\": \"ok\"}\nframe 3 FAILED\r\x1b[2J";
+        fwrite(noise, 1, sizeof(noise), stdout);
+        fwrite(noise, 1, sizeof(noise), stderr);
+        fflush(stdout);
+    }
 #endif
     pose->qw = 1.0;
     *status = VOBENCH_TRACKING_OK;
@@ -50,7 +92,13 @@ static vobench_status f_process(vobench_odometry* self, const vobench_frame* fra
 }
 static const char* f_last_error(vobench_odometry* self) {
     (void)self;
+#if FAULT == FAULT_ERROR_STATUS
+    return "deliberate error status at frame 3";
+#elif FAULT == FAULT_MEMORY
+    return "allocated 8 GB without being stopped";
+#else
     return "";
+#endif
 }
 static void f_destroy(vobench_odometry* self) { free(self); }
 

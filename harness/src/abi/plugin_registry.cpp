@@ -57,6 +57,16 @@ PluginScan PluginRegistry::scan() const {
     return scan;
 }
 
+std::optional<fs::path> PluginRegistry::locate(const std::string& name) const {
+    if (name.find('/') != std::string::npos || fs::path(name).extension() == ".so") {
+        if (fs::is_regular_file(name)) return fs::path(name);
+        return std::nullopt;
+    }
+    for (const fs::path& folder : folders_)
+        if (fs::is_regular_file(folder / ("vobench_" + name + ".so"))) return folder / ("vobench_" + name + ".so");
+    return std::nullopt;
+}
+
 PluginPtr PluginRegistry::find(const std::string& name, vobench_plugin_kind kind) const {
     PluginPtr found;
     if (name.find('/') != std::string::npos || fs::path(name).extension() == ".so") {

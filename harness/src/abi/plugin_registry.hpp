@@ -35,6 +35,9 @@ public:
     // Finds a plugin by name (or explicit path) and, when `kind` is not 0, of that kind.
     // Throws PluginLoadError naming what was searched.
     PluginPtr find(const std::string& name_or_path, vobench_plugin_kind kind = 0) const;
+    // The file a name or path would load, without loading it: an explicit path that exists, or the
+    // first <folder>/vobench_<name>.so. Lets callers tell "no such plugin" from "refused to load".
+    std::optional<std::filesystem::path> locate(const std::string& name_or_path) const;
 
 private:
     std::vector<std::filesystem::path> folders_;

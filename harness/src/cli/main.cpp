@@ -52,7 +52,7 @@ int main(int argc, char** argv) {
     vobench::cli::add_traj_command(app, exit_code);
     vobench::cli::add_data_command(app, exit_code);
     vobench::cli::add_synth_command(app, exit_code);
-    vobench::cli::add_demo_command(app, exit_code);
+    vobench::cli::add_run_commands(app, exit_code);
     vobench::cli::add_new_plugin_command(app, exit_code);
 
     try {

@@ -45,6 +45,24 @@ nlohmann::json protocol_json(const Protocol& p) {
     return j;
 }
 
+Protocol protocol_from_json(const nlohmann::json& j) {
+    Protocol p;
+    p.name = parse_protocol(j.at("name").get<std::string>());
+    p.association.max_difference = j.at("max_difference_s").get<double>();
+    p.association.offset = j.at("offset_s").get<double>();
+    p.ate = j.contains("ate");
+    p.rpe = j.contains("rpe");
+    if (p.ate) {
+        p.alignment = parse_alignment(j["ate"].at("alignment").get<std::string>());
+        p.align_first = j["ate"].at("align_first").get<std::size_t>();
+    }
+    if (p.rpe) {
+        p.rpe_delta = j["rpe"].at("delta").get<double>();
+        p.rpe_unit = parse_delta_unit(j["rpe"].at("delta_unit").get<std::string>());
+    }
+    return p;
+}
+
 nlohmann::json evaluation_json(const Evaluation& e) {
     nlohmann::json j = nlohmann::json::object();
     if (e.ate) {

@@ -38,6 +38,8 @@ struct Evaluation {
 Evaluation evaluate(const Trajectory& gt, const Trajectory& est, const Protocol& protocol);
 
 nlohmann::json protocol_json(const Protocol& protocol);
+// The inverse of protocol_json (a run record read back); throws on a malformed record.
+Protocol protocol_from_json(const nlohmann::json& j);
 // {"ate": {...}, "rpe": {"trans": {...}, "rot_deg": {...}}, "protocol": {...}}
 nlohmann::json evaluation_json(const Evaluation& evaluation);
 

@@ -1,6 +1,7 @@
 #include "run/frame_cache.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "util/hash.hpp"
 
 #include <fmt/format.h>
 #include <zstd.h>
@@ -13,34 +14,6 @@ namespace vobench {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A 64-bit hash over bytes, 8 at a time (multiply–xorshift, as in MurmurHash's finaliser): fast enough
-// to hash a whole sequence, which costs less than decoding it once.
-class Hasher {
-public:
-    void add(const void* data, std::size_t size) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (; size >= 8; p += 8, size -= 8) {
-            uint64_t w;
-            std::memcpy(&w, p, 8);
-            mix(w);
-        }
-        uint64_t tail = 0;
-        std::memcpy(&tail, p, size);
-        mix(tail ^ (static_cast<uint64_t>(size) << 56));
-    }
-    void add(const std::string& s) { add(s.data(), s.size()); }
-    uint64_t value() const { return h_; }
-
-private:
-    void mix(uint64_t w) {
-        w *= 0x87c37b91114253d5ull;
-        w ^= w >> 31;
-        h_ = (h_ ^ w) * 0x9e3779b97f4a7c15ull;
-        h_ ^= h_ >> 29;
-    }
-    uint64_t h_ = 0x6a09e667f3bcc908ull;
-};
 
 struct ImageHeader {
     int32_t width, height, stride, format;
@@ -63,19 +36,7 @@ std::string sequence_key(const PluginLibrary& reader, const ParamMap& options, c
     h.add(reader.name());
     h.add(std::string(reader.descriptor().version));
     for (const auto& [k, v] : options) h.add(k + "=" + v);
-    std::vector<fs::path> files;
-    for (const auto& entry : fs::recursive_directory_iterator(sequence))
-        if (entry.is_regular_file()) files.push_back(entry.path());
-    std::sort(files.begin(), files.end());
-    std::vector<char> buffer(1 << 20);
-    for (const fs::path& f : files) {
-        h.add(fs::relative(f, sequence).generic_string());
-        std::ifstream in(f, std::ios::binary);
-        while (in) {
-            in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-            h.add(buffer.data(), static_cast<std::size_t>(in.gcount()));
-        }
-    }
+    hash_tree(h, sequence);
     return fmt::format("{:016x}", h.value());
 }
 

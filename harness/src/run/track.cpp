@@ -48,7 +48,9 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     std::unique_ptr<FrameCache> cache;
     if (!options.frame_cache.empty())
         cache = std::make_unique<FrameCache>(options.frame_cache / sequence_key(dataset.plugin(), options.dataset_options, options.path));
+    if (options.on_start) options.on_start(info, odometry.plugin());
     FramePrefetcher frames(dataset, count, 4, cache.get());  // decoding overlaps the plugin, on another thread
+    const auto loop_start = std::chrono::steady_clock::now();
     for (uint64_t i = 0; i < count; ++i) {
         std::unique_ptr<OwnedFrame> owned;
         try {
@@ -89,11 +91,15 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         sp.p = {pose.tx, pose.ty, pose.tz};
         sp.q = q.normalized();
         result.estimate.push_back(sp);
+        if (options.on_frame) options.on_frame(rec, sp);
         result.frames.push_back(std::move(rec));
     }
+    result.loop_wall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - loop_start).count();
 
     const metrics::Trajectory gt = ground_truth_of(info);
-    if (gt.empty()) {
+    if (!options.evaluate) {
+        result.evaluation_error = "not evaluated here";
+    } else if (gt.empty()) {
         result.evaluation_error = "the sequence has no ground truth";
     } else if (result.estimate.size() < 2) {
         result.evaluation_error = "fewer than two estimated poses";

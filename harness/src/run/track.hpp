@@ -11,11 +11,21 @@
 #include "metrics/evaluation.hpp"
 
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace vobench {
+
+struct FrameRecord {
+    uint64_t index = 0;
+    double stamp = 0;
+    int64_t process_ns = 0;
+    vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
+    std::vector<std::pair<std::string, int64_t>> stages;
+    std::vector<std::pair<std::string, double>> counters;
+};
 
 struct TrackOptions {
     std::string dataset;          // reader plugin name or path
@@ -27,16 +37,13 @@ struct TrackOptions {
     uint64_t seed = 1;
     metrics::Protocol protocol;
     std::filesystem::path frame_cache;  // root of the decoded-frame cache; empty: no cache
+    bool evaluate = true;               // false: the caller evaluates (an isolated cell's supervisor)
+    // Called once the sequence is open and the plugin started, and after each frame, outside the
+    // timed window: an isolated cell streams its results to disk so that a crash loses nothing.
+    std::function<void(const vobench_sequence_info&, const PluginLibrary& odometry)> on_start;
+    std::function<void(const FrameRecord&, const metrics::StampedPose&)> on_frame;
 };
 
-struct FrameRecord {
-    uint64_t index = 0;
-    double stamp = 0;
-    int64_t process_ns = 0;
-    vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
-    std::vector<std::pair<std::string, int64_t>> stages;
-    std::vector<std::pair<std::string, double>> counters;
-};
 
 struct TrackResult {
     metrics::Trajectory estimate;
@@ -46,6 +53,7 @@ struct TrackResult {
     std::optional<metrics::Evaluation> evaluation;
     std::string evaluation_error;         // why there is no evaluation (no ground truth, no overlap ...)
     std::string sequence, sensor;
+    int64_t loop_wall_ns = 0;             // wall time of the whole frame loop (reading included)
     double mean_ms() const;
 };
 

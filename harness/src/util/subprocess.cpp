@@ -1,61 +1,115 @@
 #include "util/subprocess.hpp"
 
 #include <boost/dll/runtime_symbol_info.hpp>
-#include <boost/process.hpp>
 
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <filesystem>
+#include <fcntl.h>
 #include <fstream>
+#include <spawn.h>
 #include <sstream>
+#include <stdexcept>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 
+extern char** environ;
+
 namespace vobench {
-namespace bp = boost::process;
+namespace fs = std::filesystem;
 
 std::string ChildResult::describe() const {
-    if (timed_out) return "timed out (killed)";
+    if (timed_out) return "timed out after " + std::to_string(timeout_s) + " s (killed)";
+    if (memory_exceeded) return "exceeded the memory limit of " + std::to_string(memory_mb) + " MB (killed)";
     if (exited) return "exited with code " + std::to_string(exit_code);
     std::string name = sigabbrev_np(signal) ? std::string("SIG") + sigabbrev_np(signal) : "?";
     return "killed by signal " + std::to_string(signal) + " (" + name + ")";
 }
 
-ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
-    namespace fs = std::filesystem;
-    const fs::path log = fs::temp_directory_path() /
-                         ("vobench-child-" + std::to_string(::getpid()) + "-" +
-                          std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".log");
-    ChildResult result;
-    {
-        // Output goes to a file, not a pipe: a chatty child can never block on a full pipe.
-        bp::child child(boost::dll::program_location(), bp::args(args), (bp::std_out & bp::std_err) > log.string(),
-                        bp::std_in.close());
-        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(timeout_s);
-        std::error_code ec;
-        while (child.running(ec) && std::chrono::steady_clock::now() < deadline)
-            std::this_thread::sleep_for(std::chrono::milliseconds(10));
-        if (child.running(ec)) {
-            child.terminate(ec);  // SIGKILL
-            result.timed_out = true;
-        } else {
-            const int status = child.native_exit_code();
-            if (WIFEXITED(status)) {
-                result.exited = true;
-                result.exit_code = WEXITSTATUS(status);
-            } else if (WIFSIGNALED(status)) {
-                result.signal = WTERMSIG(status);
-            }
-        }
+namespace {
+
+// Resident set of a live process in KiB, from /proc/<pid>/statm (pages); 0 if unreadable.
+uint64_t resident_kb(pid_t pid) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/statm");
+    uint64_t size = 0, resident = 0;
+    if (!(in >> size >> resident)) return 0;
+    return resident * static_cast<uint64_t>(::sysconf(_SC_PAGESIZE)) / 1024;
+}
+
+void decode_status(int status, ChildResult& r) {
+    if (WIFEXITED(status)) {
+        r.exited = true;
+        r.exit_code = WEXITSTATUS(status);
+    } else if (WIFSIGNALED(status)) {
+        r.signal = WTERMSIG(status);
     }
-    std::ifstream in(log);
+}
+
+}  // namespace
+
+ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
+    const std::string exe = boost::dll::program_location().string();
+    std::vector<std::string> argv_storage{exe};
+    argv_storage.insert(argv_storage.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : argv_storage) argv.push_back(a.data());
+    argv.push_back(nullptr);
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
+    const std::string log = limits.log.empty() ? "/dev/null" : limits.log.string();
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    pid_t pid = 0;
+    const auto start = std::chrono::steady_clock::now();
+    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+
+    ChildResult result;
+    result.timeout_s = limits.timeout_s;
+    result.memory_mb = limits.memory_mb;
+    const auto deadline = start + std::chrono::seconds(limits.timeout_s);
+    int status = 0;
+    rusage usage{};
+    for (;;) {
+        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
+        if (done == pid) break;
+        if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("wait4: ") + std::strerror(errno));
+        if (std::chrono::steady_clock::now() >= deadline) {
+            result.timed_out = true;
+        } else if (limits.memory_mb > 0 && resident_kb(pid) > limits.memory_mb * 1024) {
+            result.memory_exceeded = true;
+        }
+        if (result.timed_out || result.memory_exceeded) {
+            ::kill(pid, SIGKILL);
+            while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+            }
+            break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    decode_status(status, result);
+    result.peak_rss_kb = static_cast<uint64_t>(usage.ru_maxrss);
+    result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
+    ChildLimits limits;
+    limits.timeout_s = timeout_s;
+    limits.log = fs::temp_directory_path() / ("vobench-child-" + std::to_string(::getpid()) + "-" +
+                                              std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".log");
+    ChildResult result = run_self_limited(args, limits);
+    std::ifstream in(limits.log);
     std::ostringstream ss;
     ss << in.rdbuf();
     result.output = ss.str();
     std::error_code ec;
-    fs::remove(log, ec);
+    fs::remove(limits.log, ec);
     return result;
 }
 

@@ -1,23 +1,44 @@
-// subprocess.hpp — running this same executable as an isolated child (Boost.Process), with a
-// wall-clock timeout, so that a plugin that crashes, aborts, exits or hangs cannot take vobench down.
+// subprocess.hpp — running this same executable as an isolated child, with a wall-clock timeout and
+// a resident-memory limit, so that a plugin that crashes, aborts, exits, hangs or eats memory cannot
+// take vobench down.
+//
+// posix_spawn + wait4 rather than Boost.Process: wait4 gives each child's own peak RSS (rusage), which
+// the run records need and which RUSAGE_CHILDREN cannot give when several children run at once.
 #pragma once
 
+#include <cstdint>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 namespace vobench {
+
+struct ChildLimits {
+    int timeout_s = 600;               // wall clock; then SIGKILL
+    uint64_t memory_mb = 0;            // resident set; 0: no limit. Checked every 5 ms; then SIGKILL
+    std::filesystem::path log;         // stdout and stderr go here (a file, never a pipe that could fill)
+};
 
 struct ChildResult {
     bool exited = false;      // exited normally (exit_code valid)
     int exit_code = -1;
     int signal = 0;           // the signal that ended it, when it did not exit
     bool timed_out = false;   // killed by us after the timeout
-    std::string output;       // stdout and stderr, interleaved
-    // "exited with code 3", "killed by signal 11 (SIGSEGV)", "timed out after 120 s" ...
+    bool memory_exceeded = false;  // killed by us over the memory limit
+    uint64_t peak_rss_kb = 0; // the child's peak resident set (wait4's ru_maxrss)
+    double wall_s = 0;
+    int timeout_s = 0;
+    uint64_t memory_mb = 0;
+    std::string output;       // run_self only: stdout and stderr, interleaved
+    // "exited with code 3", "killed by signal 11 (SIGSEGV)", "timed out after 120 s",
+    // "exceeded the memory limit of 512 MB" ...
     std::string describe() const;
 };
 
-// Runs <this executable> args..., waiting at most timeout_s seconds (then SIGKILL).
+// Runs <this executable> args... under `limits`. Throws std::runtime_error if it cannot start.
+ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits);
+
+// As above with the output captured into ChildResult::output (a temporary log file).
 ChildResult run_self(const std::vector<std::string>& args, int timeout_s);
 
 }  // namespace vobench

@@ -1,0 +1,183 @@
+#include "report/figures.hpp"
+
+#include "metrics/trajectory_io.hpp"
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include <cerrno>
+#include <fcntl.h>
+#include <cstring>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+extern char** environ;
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+namespace {
+
+// A gnuplot single-quoted string: only ' needs escaping (doubled).
+std::string gq(const std::string& s) {
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+    return out + "'";
+}
+
+// Draws the figure in three formats from one plot body. `noenhanced`: names with _ or ^ print as written.
+std::string script(const std::string& stem, const std::string& setup, const std::string& plot, int width, int height) {
+    return fmt::format(
+        "# {0}: written by vobench; edit and run `gnuplot {0}.gp` in this folder to restyle.\n"
+        "set encoding utf8\n{1}\n"
+        "set terminal pngcairo noenhanced size {2},{3} font 'Sans,10'\nset output '{0}.png'\n{4}\n"
+        "set terminal svg noenhanced size {2},{3} font 'Sans,10'\nset output '{0}.svg'\n{4}\n"
+        "set terminal pdfcairo noenhanced size {5:.2f}in,{6:.2f}in font 'Sans,8'\nset output '{0}.pdf'\n{4}\nunset output\n",
+        stem, setup, width, height, plot, width / 100.0, height / 100.0);
+}
+
+bool have_gnuplot() {
+    static const bool found = [] {
+        for (const char* dir : {"/usr/bin", "/usr/local/bin", "/bin"})
+            if (::access((std::string(dir) + "/gnuplot").c_str(), X_OK) == 0) return true;
+        return false;
+    }();
+    return found;
+}
+
+bool run_gnuplot(const fs::path& folder, const std::string& stem) {
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
+    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, (stem + ".log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    std::string exe = "gnuplot", script_name = stem + ".gp";
+    char* argv[] = {exe.data(), script_name.data(), nullptr};
+    pid_t pid = 0;
+    const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (rc != 0) return false;
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder / (stem + ".png"));
+    if (ok) fs::remove(folder / (stem + ".log"));
+    else spdlog::warn("gnuplot failed on {}: see {}", (folder / (stem + ".gp")).string(), (folder / (stem + ".log")).string());
+    return ok;
+}
+
+const RunRecord* first_ok(const RunGroup* g) {
+    if (!g) return nullptr;
+    for (const RunRecord* r : g->runs)
+        if (r->evaluation) return r;
+    return nullptr;
+}
+
+void emit(std::vector<Figure>& out, const fs::path& folder, Figure f, const std::string& data, const std::string& gp) {
+    metrics::write_file_atomic(folder / (f.stem + ".dat"), data);
+    metrics::write_file_atomic(folder / (f.stem + ".gp"), gp);
+    f.drawn = have_gnuplot() && run_gnuplot(folder, f.stem);
+    out.push_back(f);
+}
+
+}  // namespace
+
+std::string file_safe(const std::string& name) {
+    std::string out;
+    for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
+    return out.substr(0, 80);
+}
+
+std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
+    fs::create_directories(folder);
+    if (!have_gnuplot()) spdlog::warn("gnuplot is not installed: figure data and scripts are written, not the images (apt-get install gnuplot-nox)");
+    std::vector<Figure> figures;
+    for (const std::string& entry : entries_of(groups)) {
+        const auto sensors = sensors_of(groups, entry);
+        // Fig. 12: RPE over time, one line per sensor.
+        for (const std::string& row : rows_of(groups, entry)) {
+            std::string data, plot;
+            int block = 0;
+            for (const std::string& s : sensors) {
+                const RunRecord* r = first_ok(find_group(groups, entry, row, s));
+                if (!r || !r->evaluation->rpe || r->evaluation->rpe->pairs.empty()) continue;
+                const double t0 = r->evaluation->rpe->pairs.front().t_first;
+                data += fmt::format("# {} (cell {})\n# t_s rpe_trans_m rpe_rot_deg\n", sensor_title(s), r->cell.id);
+                for (const auto& p : r->evaluation->rpe->pairs) data += fmt::format("{:.9f} {:.9g} {:.9g}\n", p.t_first - t0, p.trans_m, p.rot_deg);
+                data += "\n\n";
+                plot += fmt::format("{}'{}.dat' index {} using 1:2 with lines lw 1.5 title {}", plot.empty() ? "plot " : ", ",
+                                    file_safe("rpe_" + entry + "_" + row), block++, gq(sensor_title(s)));
+            }
+            if (block == 0) continue;
+            Figure f{"rpe", fmt::format("RPE over time — {} on {}", entry, row), file_safe("rpe_" + entry + "_" + row), false};
+            const std::string setup = fmt::format("set title {}\nset xlabel 'time [s]'\nset ylabel 'translational RPE [m]'\nset grid\nset key top left",
+                                                  gq(f.title));
+            emit(figures, folder, f, data, script(f.stem, setup, plot, 800, 400));
+        }
+        // Fig. 13: the path from above, coloured by the ATE residual; the two axes of largest extent.
+        for (const RunGroup& g : groups) {
+            if (g.entry != entry) continue;
+            const RunRecord* r = first_ok(&g);
+            if (!r || !r->evaluation->ate) continue;
+            const auto& gt = r->evaluation->ate->ground_truth;
+            const auto& est = r->evaluation->ate->aligned_estimate;
+            Eigen::Vector3d lo = gt.front(), hi = gt.front();
+            for (const auto& p : gt) {
+                lo = lo.cwiseMin(p);
+                hi = hi.cwiseMax(p);
+            }
+            const Eigen::Vector3d extent = hi - lo;
+            int a = 0, b = 1;
+            if (extent.z() > extent.x() && extent.x() <= extent.y()) a = 2;
+            else if (extent.z() > extent.y() && extent.y() < extent.x()) b = 2;
+            static const char* axis[] = {"x", "y", "z"};
+            std::string data = fmt::format("# gt_{0} gt_{1} est_{0} est_{1} ate_m (cell {2})\n", axis[a], axis[b], r->cell.id);
+            for (std::size_t k = 0; k < gt.size(); ++k)
+                data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b], r->evaluation->ate->errors[k]);
+            Figure f{"traj", fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor), r->evaluation->ate->stats.rmse),
+                     file_safe("traj_" + entry + "_" + g.row_label() + "_" + g.sensor), false};
+            const std::string setup = fmt::format(
+                "set title {}\nset xlabel '{} [m]'\nset ylabel '{} [m]'\nset size ratio -1\nset grid\nset cblabel 'ATE [m]'\n"
+                "set palette defined (0 '#2c7bb6', 0.5 '#ffffbf', 1 '#d7191c')\nset key bottom right",
+                gq(f.title), axis[a], axis[b]);
+            const std::string plot = fmt::format("plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
+                                                 "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
+                                                 f.stem);
+            emit(figures, folder, f, data, script(f.stem, setup, plot, 700, 600));
+        }
+        // Fig. 14: bars per sequence and sensor.
+        std::string data = "# sequence";
+        for (const std::string& s : sensors) data += fmt::format(" ate_rmse_{0} rpe_rmse_{0}", s.empty() ? "sensor" : s);
+        data += "\n";
+        bool any = false;
+        for (const std::string& row : rows_of(groups, entry)) {
+            data += "\"" + row + "\"";
+            for (const std::string& s : sensors) {
+                const RunGroup* g = find_group(groups, entry, row, s);
+                const auto ate = g ? summarize(*g, "ate.rmse") : std::nullopt;
+                const auto rpe = g ? summarize(*g, "rpe.trans.rmse") : std::nullopt;
+                any |= ate.has_value();
+                data += ate ? fmt::format(" {:.9g}", ate->mean) : " NaN";
+                data += rpe ? fmt::format(" {:.9g}", rpe->mean) : " NaN";
+            }
+            data += "\n";
+        }
+        if (!any) continue;
+        Figure f{"bars", fmt::format("ATE and RPE per sequence and sensor — {}", entry), file_safe("bars_" + entry), false};
+        std::string ate_plot, rpe_plot;
+        for (std::size_t k = 0; k < sensors.size(); ++k) {
+            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k, gq(sensor_title(sensors[k])));
+            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k, gq(sensor_title(sensors[k])));
+        }
+        const std::string setup =
+            "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\nset grid ytics\n"
+            "set xtics rotate by -30\nset yrange [0:*]\nset datafile missing 'NaN'";
+        const std::string plot = fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
+                                             gq(f.title), ate_plot, rpe_plot);
+        emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
+    }
+    return figures;
+}
+
+}  // namespace vobench

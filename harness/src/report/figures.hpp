@@ -1,0 +1,31 @@
+// figures.hpp — the paper's figures, drawn by gnuplot (PNG, SVG and PDF), each with its data file and
+// script beside it in figures/ so that a user can restyle it for a paper:
+//   rpe_<entry>_<sequence>.*   RPE over time, Kinect v1 against Kinect v2 (Kraft et al. 2016, Fig. 12)
+//   traj_<entry>_<sequence>_<sensor>.*  estimate (aligned) and ground truth from above, coloured by
+//                              the ATE residual (Fig. 13)
+//   bars_<entry>.*             ATE and RPE RMSE per sequence and sensor (Fig. 14)
+// Every name that came from a config or plugin is made safe for a file name and quoted for gnuplot.
+#pragma once
+
+#include "report/aggregate.hpp"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+struct Figure {
+    std::string kind;       // "rpe", "traj", "bars"
+    std::string title;
+    std::string stem;       // figures/<stem>.{png,svg,pdf,dat,gp}
+    bool drawn = false;     // gnuplot ran and wrote the PNG
+};
+
+// Writes data and scripts under `folder` and runs gnuplot when it is installed (a warning otherwise).
+std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const std::filesystem::path& folder);
+
+// [A-Za-z0-9._-] kept, the rest '_'.
+std::string file_safe(const std::string& name);
+
+}  // namespace vobench

@@ -1,0 +1,204 @@
+#include "report/html_report.hpp"
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+std::string html_escape(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        case '\'': out += "&#39;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+namespace {
+
+std::string base64(const std::string& bytes) {
+    static const char* k = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8) | uint8_t(bytes[i + 2]);
+        out += {k[v >> 18], k[(v >> 12) & 63], k[(v >> 6) & 63], k[v & 63]};
+    }
+    if (i + 1 == bytes.size()) {
+        const uint32_t v = uint8_t(bytes[i]) << 16;
+        out += {k[v >> 18], k[(v >> 12) & 63], '=', '='};
+    } else if (i + 2 == bytes.size()) {
+        const uint32_t v = (uint8_t(bytes[i]) << 16) | (uint8_t(bytes[i + 1]) << 8);
+        out += {k[v >> 18], k[(v >> 12) & 63], k[(v >> 6) & 63], '='};
+    }
+    return out;
+}
+
+std::string read_binary(const fs::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+std::string num(const nlohmann::json& agg, const std::string& metric, int decimals) {
+    if (!agg.contains(metric) || !agg[metric].contains("mean")) return "";
+    return fmt::format("{:.{}f}", agg[metric]["mean"].get<double>(), decimals);
+}
+
+const char* kStyle = R"(
+body{font-family:system-ui,sans-serif;margin:2em auto;max-width:1200px;color:#222;padding:0 1em}
+table{border-collapse:collapse;margin:1em 0;font-size:0.9em}th,td{border:1px solid #ccc;padding:3px 8px;text-align:right}
+th{background:#f2f2f2;cursor:default}td.l,th.l{text-align:left}table.sortable th{cursor:pointer}
+tr.failed td{background:#fdecea}.tie{color:#8a6d00}.pass{color:#1b7f1b}.fail{color:#b00020}
+figure{display:inline-block;margin:0.5em;vertical-align:top}figure img{max-width:560px;border:1px solid #ddd}
+figcaption{font-size:0.85em;max-width:560px}pre{background:#f7f7f7;padding:1em;overflow:auto}
+)";
+
+// Sorts a table by the clicked column (numbers as numbers, empty last); records the row count so a
+// test can see the script ran.
+const char* kScript = R"(
+document.querySelectorAll('table.sortable').forEach(function(table){
+  var body=table.tBodies[0];
+  table.dataset.rows=body.rows.length;
+  table.querySelectorAll('th').forEach(function(th,col){
+    th.addEventListener('click',function(){
+      var asc=th.dataset.dir!=='asc';th.dataset.dir=asc?'asc':'desc';
+      var rows=Array.prototype.slice.call(body.rows);
+      rows.sort(function(a,b){
+        var x=a.cells[col].dataset.v!==undefined?a.cells[col].dataset.v:a.cells[col].textContent;
+        var y=b.cells[col].dataset.v!==undefined?b.cells[col].dataset.v:b.cells[col].textContent;
+        var nx=parseFloat(x),ny=parseFloat(y);
+        if(x===''&&y!=='')return 1;if(y===''&&x!=='')return -1;
+        var c=(!isNaN(nx)&&!isNaN(ny))?nx-ny:String(x).localeCompare(String(y));
+        return asc?c:-c;});
+      rows.forEach(function(r){body.appendChild(r);});
+    });
+  });
+});
+document.body.dataset.ready='yes';
+)";
+
+std::string leaderboard_table(const nlohmann::json& lb) {
+    const std::string primary = lb["context"]["primary_metric"];
+    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" + html_escape(primary) +
+                    " (mean)</th><th>95 % interval</th><th>ATE RMSE [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th><th>fps</th>"
+                    "<th>cells</th><th>failed</th><th class=\"l\">tied with</th><th class=\"l\">criteria</th></tr></thead><tbody>\n";
+    for (const auto& e : lb["entries"]) {
+        const auto& agg = e["aggregate"];
+        std::string ci;
+        if (agg.contains(primary) && agg[primary].contains("ci95"))
+            ci = fmt::format("[{:.4f}, {:.4f}]", agg[primary]["ci95"][0].get<double>(), agg[primary]["ci95"][1].get<double>());
+        std::string ties;
+        for (const auto& t : e["tied_with"]) ties += (ties.empty() ? "" : ", ") + html_escape(t.get<std::string>());
+        std::string crit;
+        for (const auto& c : e["criteria"])
+            crit += fmt::format("<span class=\"{}\">{} {}</span><br>", c["passed"].get<bool>() ? "pass" : "fail",
+                                c["passed"].get<bool>() ? "✔" : "✘", html_escape(c["criterion"].get<std::string>()));
+        const std::string rank = e["rank"].is_null() ? "" : std::to_string(e["rank"].get<int>());
+        h += fmt::format("<tr class=\"{}\"><td data-v=\"{}\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+                         "<td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
+                         e["complete"].get<bool>() ? "entry" : "entry failed", rank, rank.empty() ? "–" : rank,
+                         html_escape(e["entry"].get<std::string>()), num(agg, primary, 4), ci, num(agg, "ate.rmse", 4),
+                         num(agg, "rpe.trans.rmse", 4), num(agg, "rpe.rot.rmse", 3), num(agg, "fps", 1), e["cells"].size(),
+                         e["failed_cells"].get<int>(), ties, crit);
+    }
+    return h + "</tbody></table>\n";
+}
+
+std::string accuracy_tables(const std::vector<RunGroup>& groups) {
+    static const std::pair<const char*, int> cols[] = {{"ate.rmse", 4}, {"ate.std", 4}, {"rpe.trans.rmse", 4}, {"rpe.rot.rmse", 3}};
+    std::string h;
+    for (const std::string& entry : entries_of(groups)) {
+        const auto sensors = sensors_of(groups, entry);
+        h += "<h3>" + html_escape(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\" rowspan=\"2\">sequence</th>";
+        for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_escape(sensor_title(s)) + "</th>";
+        h += "</tr><tr>";
+        for (std::size_t k = 0; k < sensors.size(); ++k) h += "<th>ATE RMSE [m]</th><th>ATE std [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>";
+        h += "</tr></thead><tbody>\n";
+        for (const std::string& row : rows_of(groups, entry)) {
+            h += "<tr><td class=\"l\">" + html_escape(row) + "</td>";
+            for (const std::string& s : sensors) {
+                const RunGroup* g = find_group(groups, entry, row, s);
+                const double pos = g ? g->runs.front()->cell.gt_accuracy.position_m : 0, rot = g ? g->runs.front()->cell.gt_accuracy.rotation_deg : 0;
+                for (const auto& [metric, dec] : cols)
+                    h += "<td>" + html_escape(format_metric(g, metric, dec, std::string(metric).rfind("rpe.rot", 0) == 0 ? rot : pos)) + "</td>";
+            }
+            h += "</tr>\n";
+        }
+        h += "</tbody></table>\n";
+    }
+    return h;
+}
+
+std::string timing_table(const std::vector<RunGroup>& groups) {
+    std::string h = "<table class=\"sortable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th class=\"l\">sensor</th>"
+                    "<th>mean [ms]</th><th>median</th><th>p95</th><th>max</th><th>fps</th><th>peak RSS [MB]</th><th>overhead [%]</th>"
+                    "<th class=\"l\">stages [ms/frame]</th></tr></thead><tbody>\n";
+    const auto v = [](const std::optional<double>& x, int d) { return x ? fmt::format("{:.{}f}", *x, d) : std::string(); };
+    for (const RunGroup& g : groups) {
+        std::string stages;
+        for (const std::string& s : stages_of(groups, g.entry))
+            if (const auto ms = stage_mean_ms(g, s)) stages += fmt::format("{} {:.3f}; ", html_escape(s), *ms);
+        h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+                         "<td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
+                         html_escape(g.entry), html_escape(g.row_label()), html_escape(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
+                         v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
+                         v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1), stages);
+    }
+    return h + "</tbody></table>\n";
+}
+
+std::string failures_table(const nlohmann::json& lb) {
+    if (lb["failures"].empty()) return "<p>No cell failed.</p>\n";
+    std::string h = "<table id=\"failures\"><thead><tr><th class=\"l\">cell</th><th class=\"l\">entry</th><th class=\"l\">sequence</th>"
+                    "<th class=\"l\">sensor</th><th class=\"l\">reason</th><th>frames kept</th></tr></thead><tbody>\n";
+    for (const auto& f : lb["failures"])
+        h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}/{}</td><td class=\"l\">{}</td>"
+                         "<td class=\"l\">{}</td><td>{}</td></tr>\n",
+                         html_escape(f["id"].get<std::string>().substr(0, 12)), html_escape(f["entry"].get<std::string>()),
+                         html_escape(f["dataset"].get<std::string>()), html_escape(f["sequence"].get<std::string>()),
+                         html_escape(sensor_title(f["sensor"].get<std::string>())), html_escape(f["reason"].get<std::string>()),
+                         f["failed_at_frame"].is_null() ? std::string("0") : std::to_string(f["failed_at_frame"].get<long long>()));
+    return h + "</tbody></table>\n";
+}
+
+}  // namespace
+
+std::string render_html_report(const std::vector<RunGroup>& groups, const nlohmann::json& lb, const std::vector<Figure>& figures,
+                               const fs::path& figure_folder, const ReportContext& ctx) {
+    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + html_escape(ctx.name) +
+                    " — vobench report</title>\n<style>" + kStyle + "</style></head>\n<body>\n";
+    h += "<h1>" + html_escape(ctx.name) + " — vobench report</h1>\n";
+    h += "<p>Generated " + html_escape(ctx.generated) + " by vobench " + html_escape(lb["context"]["vobench_version"].get<std::string>()) + " on " +
+         html_escape(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_escape(ctx.protocol_text) + "</p>\n";
+    h += "<h2>Leaderboard</h2>\n<p>Ranked by " + html_escape(ctx.rank_by) +
+         " over each entry's cells; entries with a failed cell are not ranked. Ties: 95 % bootstrap intervals overlap. "
+         "Click a column to sort.</p>\n" + leaderboard_table(lb);
+    h += "<h2>Accuracy (layout of Table 5, Kraft et al. 2016)</h2>\n<p>Mean ± std over repeats. † some repeats failed; ‡ within the ground "
+         "truth's declared accuracy.</p>\n" + accuracy_tables(groups);
+    h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Overhead: "
+         "the frame loop's wall time not spent in process().</p>\n" + timing_table(groups);
+    h += "<h2>Figures</h2>\n";
+    for (const Figure& f : figures) {
+        if (!f.drawn) continue;
+        h += "<figure><img alt=\"" + html_escape(f.title) + "\" src=\"data:image/png;base64," + base64(read_binary(figure_folder / (f.stem + ".png"))) +
+             "\"><figcaption>" + html_escape(f.title) + " — <code>figures/" + html_escape(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
+    }
+    h += "<h2>Failures</h2>\n" + failures_table(lb);
+    h += "<h2>Protocol</h2>\n<pre>" + html_escape(lb["context"]["protocol"].dump(2)) + "</pre>\n";
+    h += "<script>" + std::string(kScript) + "</script>\n</body></html>\n";
+    return h;
+}
+
+}  // namespace vobench

@@ -1,0 +1,27 @@
+// report_writer.hpp — everything under a sweep's output folder that is derived from runs/: summary.md,
+// summary.csv, summary.tex, leaderboard.json, figures/, report.html. `vobench run` calls it at the end;
+// `vobench report DIR` calls it alone. sweep.json (written by `vobench run`) supplies the sweep's
+// name, ranking metric and criteria; without it the defaults apply.
+#pragma once
+
+#include "sweep/sweep_config.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace vobench {
+
+struct ReportResult {
+    std::size_t runs = 0, failed = 0;
+    std::string accuracy_markdown;          // for the terminal
+    std::vector<std::string> failed_required;  // "entry: criterion" for each required criterion not met
+};
+
+// The part of a config the report needs, kept in <out>/sweep.json.
+nlohmann::json sweep_record(const SweepConfig& config);
+
+ReportResult write_report(const std::filesystem::path& out);
+
+}  // namespace vobench

@@ -1,0 +1,50 @@
+// run_record.hpp — a finished cell as the report sees it: runs/<id>/run.json plus the metrics,
+// recomputed from runs/<id>/trajectory.txt and groundtruth.txt with the protocol the cell recorded.
+// Everything the tables, leaderboard, figures and page show comes from these records alone.
+#pragma once
+
+#include "metrics/evaluation.hpp"
+#include "sweep/cell.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+// Flat metric names (as in known_metric_names()): "ate.rmse", "rpe.trans.rmse", "rpe.rot.rmse" (°) …
+using MetricMap = std::map<std::string, double>;
+
+struct RunRecord {
+    std::filesystem::path dir;
+    Cell cell;
+    nlohmann::json run;           // run.json as written
+    bool ok = false;
+    std::string reason;           // failure reason
+    bool partial = false;         // stopped early: trajectory holds the frames before the failure
+    MetricMap metrics;            // accuracy (when evaluable) and timing
+    std::optional<metrics::Evaluation> evaluation;  // per-pair errors, for the figures
+    std::string evaluation_error;
+    // Identity of the table entry this run belongs to (algorithm + parameters).
+    std::string entry() const { return cell.entry_label(); }
+};
+
+// ATE/RPE of `dir`/trajectory.txt against `dir`/groundtruth.txt. On failure returns nullopt and
+// sets `error`.
+std::optional<metrics::Evaluation> evaluate_run(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error);
+MetricMap flatten(const metrics::Evaluation& evaluation);
+
+// Both of the above: the flat metrics ({} on failure), `full` (optional) the evaluation JSON.
+MetricMap evaluate_run_files(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error,
+                             nlohmann::json* full = nullptr);
+
+// Every runs/*/run.json under `out` in the expansion order (dataset, sequence, sensor, algorithm,
+// variant, repeat). A corrupt record is skipped with a warning naming it (a finished cell is never
+// corrupt: run.json is written last and atomically; this guards against hand edits).
+std::vector<RunRecord> load_runs(const std::filesystem::path& out);
+
+}  // namespace vobench

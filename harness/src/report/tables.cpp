@@ -1,0 +1,186 @@
+#include "report/tables.hpp"
+
+#include <fmt/format.h>
+
+namespace vobench {
+
+namespace {
+
+struct Column {
+    const char* metric;
+    const char* title;
+    int decimals;
+    bool rotation;  // compared with the ground truth's rotation accuracy, else its position accuracy
+};
+const Column kAccuracy[] = {{"ate.rmse", "ATE RMSE [m]", 4, false},
+                            {"ate.std", "ATE std [m]", 4, false},
+                            {"rpe.trans.rmse", "RPE RMSE [m]", 4, false},
+                            {"rpe.rot.rmse", "RPE RMSE [°]", 3, true}};
+
+double gt_sigma(const RunGroup* g, const Column& c) {
+    if (!g || g->runs.empty()) return 0;
+    const auto& acc = g->runs.front()->cell.gt_accuracy;
+    return c.rotation ? acc.rotation_deg : acc.position_m;
+}
+
+std::string latex_escape(const std::string& s) {
+    std::string out;
+    for (char ch : s) {
+        switch (ch) {
+        case '_': case '&': case '%': case '#': case '$': case '{': case '}': out += std::string("\\") + ch; break;
+        case '\\': out += "\\textbackslash{}"; break;
+        case '~': out += "\\textasciitilde{}"; break;
+        case '^': out += "\\textasciicircum{}"; break;
+        default: out += ch;
+        }
+    }
+    return out;
+}
+
+std::string md_escape(const std::string& s) {
+    std::string out;
+    for (char ch : s) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
+    return out;
+}
+
+std::string opt(const std::optional<double>& v, int decimals) { return v ? fmt::format("{:.{}f}", *v, decimals) : "–"; }
+
+}  // namespace
+
+std::string format_metric(const RunGroup* group, const std::string& metric, int decimals, double sigma) {
+    if (!group) return "–";
+    const auto s = summarize(*group, metric);
+    if (!s) return group->failed() == group->runs.size() ? "failed" : "–";
+    std::string text = s->n > 1 ? fmt::format("{:.{}f} ± {:.{}f}", s->mean, decimals, s->std, decimals) : fmt::format("{:.{}f}", s->mean, decimals);
+    if (group->failed() > 0) text += "†";
+    if (sigma > 0 && s->mean <= sigma) text += "‡";
+    return text;
+}
+
+std::string accuracy_markdown(const std::vector<RunGroup>& groups) {
+    std::string md;
+    for (const std::string& entry : entries_of(groups)) {
+        const auto sensors = sensors_of(groups, entry);
+        md += fmt::format("### {}\n\n| sequence |", md_escape(entry));
+        for (const std::string& s : sensors)
+            for (const Column& c : kAccuracy) md += fmt::format(" {} {} |", sensor_title(s), c.title);
+        md += "\n|---|";
+        for (std::size_t k = 0; k < sensors.size() * std::size(kAccuracy); ++k) md += "---:|";
+        md += "\n";
+        for (const std::string& row : rows_of(groups, entry)) {
+            md += "| " + md_escape(row) + " |";
+            for (const std::string& s : sensors) {
+                const RunGroup* g = find_group(groups, entry, row, s);
+                for (const Column& c : kAccuracy) md += " " + format_metric(g, c.metric, c.decimals, gt_sigma(g, c)) + " |";
+            }
+            md += "\n";
+        }
+        md += "\n";
+    }
+    return md;
+}
+
+std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
+    std::string md = fmt::format("# {} — vobench summary\n\nGenerated {}. {}\n\n", md_escape(ctx.name), ctx.generated, ctx.protocol_text);
+    md += "## Accuracy (layout of Table 5, Kraft et al. 2016)\n\n"
+          "Mean ± std over repeats. † some repeats failed (see Failures); ‡ within the ground truth's declared accuracy.\n\n";
+    md += accuracy_markdown(groups);
+    md += "## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n";
+    for (const std::string& entry : entries_of(groups)) {
+        const auto stages = stages_of(groups, entry);
+        md += fmt::format("### {}\n\n| sequence | sensor |", md_escape(entry));
+        for (const std::string& s : stages) md += " " + md_escape(s) + " |";
+        md += " process() mean | median | p95 | max | fps | peak RSS [MB] | harness overhead [%] |\n|---|---|";
+        for (std::size_t k = 0; k < stages.size() + 8; ++k) md += "---:|";
+        md += "\n";
+        for (const RunGroup& g : groups) {
+            if (g.entry != entry) continue;
+            md += fmt::format("| {} | {} |", md_escape(g.row_label()), sensor_title(g.sensor));
+            for (const std::string& s : stages) md += " " + opt(stage_mean_ms(g, s), 3) + " |";
+            for (const char* f : {"mean_ms", "median_ms", "p95_ms", "max_ms"}) md += " " + opt(timing_mean(g, f), 3) + " |";
+            md += " " + opt(timing_mean(g, "fps"), 1) + " | " + opt(timing_mean(g, "peak_rss_mb"), 0) + " | " +
+                  opt(timing_mean(g, "harness_overhead_pct"), 1) + " |\n";
+        }
+        md += "\n";
+    }
+    std::string failures;
+    for (const RunGroup& g : groups)
+        for (const RunRecord* r : g.runs)
+            if (!r->ok)
+                failures += fmt::format("| {} | {} | {} | {} | {} | {} |\n", r->cell.id.substr(0, 12), md_escape(g.row_label()),
+                                        sensor_title(g.sensor), md_escape(g.entry), md_escape(r->reason),
+                                        r->partial ? fmt::format("{} frames kept", r->run.value("frames", 0)) : "none");
+    if (!failures.empty())
+        md += "## Failures\n\n| cell | sequence | sensor | entry | reason | partial trajectory |\n|---|---|---|---|---|---|\n" + failures + "\n";
+    return md;
+}
+
+std::string summary_csv(const std::vector<RunGroup>& groups) {
+    static const char* kMetrics[] = {"ate.rmse", "ate.mean", "ate.median", "ate.std", "ate.max", "rpe.trans.rmse", "rpe.trans.mean",
+                                     "rpe.rot.rmse", "rpe.rot.mean", "lost_frames", "failed_frames"};
+    static const char* kTiming[] = {"mean_ms", "median_ms", "p95_ms", "max_ms", "fps", "peak_rss_mb", "harness_overhead_pct"};
+    const auto quote = [](const std::string& s) {
+        std::string q = "\"";
+        for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+        return q + "\"";
+    };
+    std::string csv = "entry,algorithm,params,dataset,sequence,sensor,repeats,failed";
+    for (const char* m : kMetrics) csv += fmt::format(",{0}_mean,{0}_std", m);
+    for (const char* t : kTiming) csv += fmt::format(",{}", t);
+    csv += "\n";
+    for (const RunGroup& g : groups) {
+        const Cell& c = g.runs.front()->cell;
+        csv += fmt::format("{},{},{},{},{},{},{},{}", quote(g.entry), quote(c.algorithm), quote(c.variant_label()), quote(g.dataset),
+                           quote(g.sequence), quote(g.sensor), g.runs.size(), g.failed());
+        for (const char* m : kMetrics) {
+            const auto s = summarize(g, m);
+            csv += s ? fmt::format(",{:.17g},{:.17g}", s->mean, s->std) : std::string(",,");
+        }
+        for (const char* t : kTiming) {
+            const auto v = timing_mean(g, t);
+            csv += v ? fmt::format(",{:.17g}", *v) : std::string(",");
+        }
+        csv += "\n";
+    }
+    return csv;
+}
+
+std::string summary_latex(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
+    std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n", ctx.name, ctx.generated,
+                                  ctx.protocol_text);
+    for (const std::string& entry : entries_of(groups)) {
+        const auto sensors = sensors_of(groups, entry);
+        tex += "\\begin{table}\n\\centering\n\\caption{" + latex_escape(entry) +
+               ": ATE and RPE (layout of Table 5, Kraft et al. 2016)}\n\\begin{tabular}{l";
+        for (std::size_t k = 0; k < sensors.size(); ++k) tex += "rrrr";
+        tex += "}\n\\toprule\n";
+        for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_escape(sensor_title(s)) + "}";
+        tex += " \\\\\nSequence";
+        for (std::size_t k = 0; k < sensors.size(); ++k)
+            tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
+        tex += " \\\\\n\\midrule\n";
+        for (const std::string& row : rows_of(groups, entry)) {
+            tex += latex_escape(row);
+            for (const std::string& s : sensors) {
+                const RunGroup* g = find_group(groups, entry, row, s);
+                for (const Column& c : kAccuracy) {
+                    std::string v = format_metric(g, c.metric, c.decimals, gt_sigma(g, c));
+                    std::string t;
+                    for (std::size_t i = 0; i < v.size();) {  // ± † ‡ as LaTeX
+                        if (v.compare(i, 2, "±") == 0) { t += "$\\pm$"; i += 2; }
+                        else if (v.compare(i, 3, "†") == 0) { t += "$^\\dagger$"; i += 3; }
+                        else if (v.compare(i, 3, "‡") == 0) { t += "$^\\ddagger$"; i += 3; }
+                        else if (v.compare(i, 3, "–") == 0) { t += "--"; i += 3; }
+                        else t += v[i++];
+                    }
+                    tex += " & " + t;
+                }
+            }
+            tex += " \\\\\n";
+        }
+        tex += "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n";
+    }
+    return tex;
+}
+
+}  // namespace vobench

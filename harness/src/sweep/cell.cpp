@@ -1,0 +1,152 @@
+#include "sweep/cell.hpp"
+
+#include "sweep/dataset_prep.hpp"
+#include "util/hash.hpp"
+
+#include <fnmatch.h>
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+std::string Cell::variant_label() const {
+    std::string label;
+    for (const auto& [k, v] : params) label += (label.empty() ? "" : " ") + k + "=" + v;
+    return label.empty() ? "defaults" : label;
+}
+
+std::string Cell::entry_label() const {
+    return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]";
+}
+
+nlohmann::json cell_to_json(const Cell& c) {
+    return {{"id", c.id},
+            {"dataset", c.dataset},
+            {"sequence", c.sequence},
+            {"sensor", c.sensor},
+            {"reader", c.reader},
+            {"path", c.path},
+            {"reader_options", c.reader_options},
+            {"dataset_checksum", c.dataset_checksum},
+            {"reader_hash", c.reader_hash},
+            {"gt_accuracy", {{"position_m", c.gt_accuracy.position_m}, {"rotation_deg", c.gt_accuracy.rotation_deg}}},
+            {"algorithm", c.algorithm},
+            {"plugin", c.plugin},
+            {"plugin_file", c.plugin_file},
+            {"plugin_hash", c.plugin_hash},
+            {"load_error", c.load_error},
+            {"params", c.params},
+            {"repeat", c.repeat},
+            {"seed", c.seed},
+            {"max_frames", c.max_frames},
+            {"protocol", metrics::protocol_json(c.protocol)},
+            {"limits", {{"timeout_s", c.limits.timeout_s}, {"memory_mb", c.limits.memory_mb}, {"threads", c.limits.threads}}}};
+}
+
+Cell cell_from_json(const nlohmann::json& j) {
+    Cell c;
+    c.id = j.at("id");
+    c.dataset = j.at("dataset");
+    c.sequence = j.at("sequence");
+    c.sensor = j.at("sensor");
+    c.reader = j.at("reader");
+    c.path = j.at("path");
+    c.reader_options = j.at("reader_options").get<ParamMap>();
+    c.dataset_checksum = j.at("dataset_checksum");
+    c.reader_hash = j.at("reader_hash");
+    c.gt_accuracy.position_m = j.at("gt_accuracy").at("position_m");
+    c.gt_accuracy.rotation_deg = j.at("gt_accuracy").at("rotation_deg");
+    c.algorithm = j.at("algorithm");
+    c.plugin = j.at("plugin");
+    c.plugin_file = j.at("plugin_file");
+    c.plugin_hash = j.at("plugin_hash");
+    c.load_error = j.at("load_error");
+    c.params = j.at("params").get<ParamMap>();
+    c.repeat = j.at("repeat");
+    c.seed = j.at("seed");
+    c.max_frames = j.at("max_frames");
+    c.protocol = metrics::protocol_from_json(j.at("protocol"));
+    c.limits.timeout_s = j.at("limits").at("timeout_s");
+    c.limits.memory_mb = j.at("limits").at("memory_mb");
+    c.limits.threads = j.at("limits").at("threads");
+    return c;
+}
+
+namespace {
+
+std::string file_hash(const fs::path& file) {
+    Hasher h;
+    hash_file(h, file);
+    return h.hex();
+}
+
+// The id: every field that defines the result, not the limits (a longer timeout does not change what
+// a finished cell computed) and not the id itself.
+std::string cell_id(const Cell& c) {
+    nlohmann::json j = cell_to_json(c);
+    j.erase("id");
+    j.erase("limits");
+    j.erase("path");         // the content checksum stands for it: a moved data set keeps its results
+    j.erase("plugin_file");  // the binary hash stands for it
+    Hasher h;
+    h.add(j.dump());
+    return h.hex();
+}
+
+}  // namespace
+
+std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& registry, const fs::path& out, bool render) {
+    const fs::path memo = out / ".cache" / "checksums.json";
+    std::vector<Cell> cells;
+    for (const DatasetSpec& d : config.datasets) {
+        const PluginPtr reader = registry.find(d.reader, VOBENCH_KIND_DATASET);
+        const std::string reader_hash = file_hash(reader->path());
+        for (const SequenceRef& s : prepare_sequences(d, registry, render)) {
+            const std::string checksum = fs::is_directory(s.path) ? dataset_checksum(s.path, memo) : "to-render";
+            for (const AlgorithmSpec& a : config.algorithms) {
+                std::string plugin_file, plugin_hash;
+                if (a.load_error.empty()) {
+                    const PluginPtr plugin = registry.find(a.plugin, VOBENCH_KIND_ODOMETRY);
+                    plugin_file = fs::absolute(plugin->path()).lexically_normal().string();
+                    plugin_hash = file_hash(plugin->path());
+                } else if (const auto located = registry.locate(a.plugin)) {
+                    plugin_file = fs::absolute(*located).lexically_normal().string();
+                    plugin_hash = file_hash(*located);
+                }
+                for (const ParamMap& params : a.variants)
+                    for (std::size_t r = 0; r < config.seeds.size(); ++r) {
+                        Cell c;
+                        c.dataset = d.name;
+                        c.sequence = s.name;
+                        c.sensor = s.sensor;
+                        c.reader = s.reader;
+                        c.path = fs::absolute(s.path).lexically_normal().string();
+                        c.reader_options = s.options;
+                        c.dataset_checksum = checksum;
+                        c.reader_hash = reader_hash;
+                        c.gt_accuracy = d.gt_accuracy;
+                        c.algorithm = a.name;
+                        c.plugin = a.plugin;
+                        c.plugin_file = plugin_file;
+                        c.plugin_hash = plugin_hash;
+                        c.load_error = a.load_error;
+                        c.params = params;
+                        c.repeat = r;
+                        c.seed = config.seeds[r];
+                        c.max_frames = config.max_frames;
+                        c.protocol = config.protocol;
+                        c.limits = config.limits;
+                        c.id = cell_id(c);
+                        cells.push_back(std::move(c));
+                    }
+            }
+        }
+    }
+    return cells;
+}
+
+bool cell_matches(const Cell& c, const std::string& pattern) {
+    const std::string key = c.dataset + "/" + c.sequence + "/" + c.sensor + "/" + c.algorithm + "/" + c.id;
+    return fnmatch(pattern.c_str(), key.c_str(), 0) == 0 || fnmatch(("*" + pattern + "*").c_str(), key.c_str(), 0) == 0;
+}
+
+}  // namespace vobench

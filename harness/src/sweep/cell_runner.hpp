@@ -1,0 +1,40 @@
+// cell_runner.hpp — one cell, isolated.
+//
+// The supervisor (run_cell) prepares runs/.work/<id>/, starts `vobench cell-exec <that folder>` as a
+// child process under the cell's timeout and memory limit, and waits. The child streams every frame
+// (pose, process time, stages, counters) to frames.jsonl as it goes, so that whatever ends it — a
+// signal, abort(), exit(), the timeout, the memory limit, a non-finite pose, a plugin error — the
+// frames before are kept. The supervisor then turns the stream into trajectory.txt and timing.csv,
+// evaluates against the ground truth the child saved, writes run.json, and moves the folder to
+// runs/<id>/ with one rename: a cell folder exists complete or not at all.
+#pragma once
+
+#include "sweep/cell.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <string>
+
+namespace vobench {
+
+struct CellOutcome {
+    std::string id;
+    bool ok = false;
+    std::string reason;      // why it failed ("" when ok)
+    uint64_t frames = 0;     // frames processed
+    double wall_s = 0;
+};
+
+// Runs one cell and writes <out>/runs/<id>/. Never throws for anything the plugin or data does;
+// throws std::runtime_error only when the output folder cannot be written.
+CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out);
+
+// The child side (`vobench cell-exec WORKDIR`): reads WORKDIR/cell.json, runs the track, streams
+// frames.jsonl and writes result.json. Returns the process exit code (0 when result.json was written).
+int exec_cell(const std::filesystem::path& work_dir);
+
+// True when <out>/runs/<id>/run.json exists (a finished cell, successful or not).
+bool cell_finished(const std::filesystem::path& out, const std::string& id);
+
+}  // namespace vobench

@@ -1,0 +1,125 @@
+#include "sweep/dataset_prep.hpp"
+
+#include "metrics/trajectory_io.hpp"
+#include "synth/sequence_writer.hpp"
+#include "synth/trajectory_families.hpp"
+#include "util/hash.hpp"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <spdlog/spdlog.h>
+
+#include <fstream>
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+namespace {
+
+// True when `dir` holds a complete sequence from this generator version.
+bool rendered(const fs::path& dir) {
+    if (!fs::exists(dir / "synth.json") || !fs::exists(dir / "groundtruth.txt")) return false;
+    std::ifstream in(dir / "synth.json");
+    const nlohmann::json meta = nlohmann::json::parse(in, nullptr, false);
+    return !meta.is_discarded() && meta.value("generator_version", 0) == synth::kGeneratorVersion;
+}
+
+// The folder name holds every parameter that defines the sequence, so a cached one is reused only
+// when it is the same; a file trajectory is named by its stem and content hash.
+fs::path ensure_rendered(const SyntheticSpec& spec, const std::string& trajectory, const std::string& sensor, bool render) {
+    std::string label = trajectory;
+    if (!synth::is_trajectory_family(trajectory)) {
+        Hasher h;
+        hash_file(h, trajectory);
+        label = fs::path(trajectory).stem().string() + "-" + h.hex().substr(0, 8);
+    }
+    const fs::path dir = spec.cache / fmt::format("{}-{}-n{}-s{}", sensor, label, spec.frames, spec.seed);
+    if (rendered(dir)) {
+        spdlog::debug("using cached {}", dir.string());
+        return dir;
+    }
+    if (!render) return dir;
+    synth::SynthOptions o;
+    o.sensor = sensor;
+    o.trajectory = trajectory;
+    o.frames = spec.frames;
+    o.seed = spec.seed;
+    o.out = dir.string() + ".partial";  // renamed into place only when complete
+    fs::remove_all(o.out);
+    const auto report = synth::synthesize(o);
+    fs::remove_all(dir);
+    fs::rename(o.out, dir);
+    spdlog::info("rendered {} ({} frames, {:.1f} frames/s)", dir.string(), report.frames, report.fps());
+    return dir;
+}
+
+std::string signature_of(const fs::path& folder) {
+    Hasher h;
+    std::vector<std::string> lines;
+    for (const auto& e : fs::recursive_directory_iterator(folder))
+        if (e.is_regular_file())
+            lines.push_back(fmt::format("{} {} {}", fs::relative(e.path(), folder).generic_string(), e.file_size(),
+                                        e.last_write_time().time_since_epoch().count()));
+    std::sort(lines.begin(), lines.end());
+    for (const std::string& l : lines) h.add(l);
+    return h.hex();
+}
+
+}  // namespace
+
+std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginRegistry& registry, bool render) {
+    std::vector<SequenceRef> out;
+    if (d.synthetic) {
+        for (const std::string& trajectory : d.synthetic->trajectories)
+            for (const std::string& sensor : d.synthetic->sensors) {
+                const std::string name = synth::is_trajectory_family(trajectory) ? trajectory : fs::path(trajectory).stem().string();
+                try {
+                    out.push_back({name, sensor, ensure_rendered(*d.synthetic, trajectory, sensor, render), "tum", d.options});
+                } catch (const std::exception& e) {
+                    throw std::runtime_error(fmt::format("dataset '{}' ({}): rendering {} for {}: {}", d.name, d.where, trajectory, sensor, e.what()));
+                }
+            }
+        return out;
+    }
+    bool reader_takes_sensor = false;
+    for (const auto& p : registry.find(d.reader, VOBENCH_KIND_DATASET)->params()) reader_takes_sensor |= p.name == "sensor";
+    const std::vector<std::string> sensors = d.sensors.empty() ? std::vector<std::string>{""} : d.sensors;
+    const std::vector<std::string> sequences = d.sequences.empty() ? std::vector<std::string>{""} : d.sequences;
+    for (const std::string& sequence : sequences)
+        for (const std::string& sensor : sensors) {
+            std::string base = d.path;
+            if (const auto at = base.find("{sensor}"); at != std::string::npos) base.replace(at, 8, sensor);
+            SequenceRef ref;
+            ref.path = sequence.empty() ? fs::path(base) : fs::path(base) / sequence;
+            ref.name = sequence.empty() ? ref.path.lexically_normal().filename().string() : sequence;
+            if (ref.name.empty()) ref.name = ref.path.lexically_normal().parent_path().filename().string();
+            ref.sensor = sensor;
+            ref.reader = d.reader;
+            ref.options = d.options;
+            if (!sensor.empty() && reader_takes_sensor) ref.options["sensor"] = sensor;
+            if (!fs::is_directory(ref.path))
+                throw std::runtime_error(fmt::format("dataset '{}' ({}): no such sequence folder: {}", d.name, d.where, ref.path.string()));
+            out.push_back(ref);
+        }
+    return out;
+}
+
+std::string dataset_checksum(const fs::path& sequence, const fs::path& memo_file) {
+    nlohmann::json memo = nlohmann::json::object();
+    if (std::ifstream in(memo_file); in) {
+        memo = nlohmann::json::parse(in, nullptr, false);
+        if (memo.is_discarded() || !memo.is_object()) memo = nlohmann::json::object();
+    }
+    const std::string key = fs::absolute(sequence).lexically_normal().string();
+    const std::string signature = signature_of(sequence);
+    if (memo.contains(key) && memo[key].value("signature", "") == signature) return memo[key].value("checksum", "");
+    Hasher h;
+    hash_tree(h, sequence);
+    const std::string checksum = h.hex();
+    memo[key] = {{"signature", signature}, {"checksum", checksum}};
+    fs::create_directories(memo_file.parent_path());
+    metrics::write_file_atomic(memo_file, memo.dump(1) + "\n");
+    return checksum;
+}
+
+}  // namespace vobench

@@ -1,0 +1,103 @@
+// sweep_config.hpp — a sweep's YAML file (configs/*.yaml), read and validated in full before anything
+// runs. Every complaint (unknown key, wrong type, unknown plugin, parameter outside the plugin's table,
+// missing path) is a ConfigError "file:line:column: message".
+//
+// The format, key by key, is documented in configs/README.md. Relative paths are taken from the
+// current directory; `${VAR}` and `${VAR:-default}` in a path are replaced from the environment.
+#pragma once
+
+#include "abi/instances.hpp"
+#include "abi/plugin_registry.hpp"
+#include "metrics/evaluation.hpp"
+#include "sweep/yaml_reader.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vobench {
+
+// Sequences the generator renders (once, cached) instead of a folder on disk.
+struct SyntheticSpec {
+    std::vector<std::string> trajectories;        // families (explore1 …) or PUTK² marker files
+    std::vector<std::string> sensors{"kinect1"};
+    uint64_t frames = 50;
+    uint64_t seed = 1;
+    std::filesystem::path cache = "datasets/synthetic";
+};
+
+// Declared accuracy of a data set's ground truth (Ceriani et al. 2009): a metric below it is noise.
+struct GroundTruthAccuracy {
+    double position_m = 0;   // 1σ; 0: not declared
+    double rotation_deg = 0;
+};
+
+struct DatasetSpec {
+    std::string name;
+    std::string reader = "tum";
+    std::optional<SyntheticSpec> synthetic;
+    std::string path;                    // may hold {sensor}
+    std::vector<std::string> sequences;  // sub-folders of path; empty: path is the sequence
+    std::vector<std::string> sensors;    // empty: the sensor the reader reports
+    ParamMap options;                    // reader options
+    GroundTruthAccuracy gt_accuracy;
+    std::string where;                   // file:line:col of the entry
+};
+
+struct AlgorithmSpec {
+    std::string name;                    // label in tables (default: the plugin name)
+    std::string plugin;                  // name or path
+    std::vector<ParamMap> variants;      // one per point of the parameter sweep (at least one)
+    std::string load_error;              // the plugin exists but refused to load: its cells fail
+    std::string where;
+};
+
+struct Limits {
+    int timeout_s = 1800;         // per cell, wall clock
+    uint64_t memory_mb = 4096;    // per cell, resident set
+    int threads = 1;              // OpenCV/TBB threads inside a cell: 1 keeps timings comparable and -j honest
+};
+
+// A benchmark problem's criterion (Rawseeds: "well-defined problems with explicit criteria"),
+// e.g. `rpe.trans.rmse <= 0.02`, checked per algorithm entry.
+struct Criterion {
+    std::string metric;   // ate.rmse, rpe.trans.rmse, failed_frames, ...
+    std::string op;       // <=, <, >=, >, ==
+    double value = 0;
+    bool required = true; // a failed required criterion makes `vobench run` exit non-zero
+    std::string text;     // as written
+};
+
+struct SweepConfig {
+    std::filesystem::path file;
+    std::string name;
+    std::filesystem::path output = "results/sweep";
+    std::vector<uint64_t> seeds{1};  // one repeat per seed
+    uint64_t max_frames = 0;         // 0: every frame
+    std::vector<DatasetSpec> datasets;
+    std::vector<AlgorithmSpec> algorithms;
+    metrics::Protocol protocol;
+    std::string rank_by = "ate.rmse";
+    Limits limits;
+    std::string backend = "local";
+    std::vector<Criterion> criteria;
+    nlohmann::json source;           // the whole file as JSON, for the record
+};
+
+// Metric names a config may rank by or set criteria on.
+const std::vector<std::string>& known_metric_names();
+
+// Throws ConfigError. Plugins are looked up in `registry`; a path that does not exist is an error
+// unless `check_paths` is false (for `--dry-run` on another machine's config).
+SweepConfig load_sweep_config(const std::filesystem::path& file, const PluginRegistry& registry, bool check_paths = true);
+
+// "${HOME}/data" → "/root/data"; "${X:-d}" → d when X is unset or empty.
+std::string expand_env(const std::string& text);
+
+Criterion parse_criterion(const std::string& text);  // throws std::invalid_argument
+
+}  // namespace vobench
