@@ -27,6 +27,7 @@ app: configure
 
 # Fast by default; checks that take minutes carry the CTest label `long`.
 test: build
+	@./scripts/install-deps.sh --test
 	cd $(BUILD_DIR) && ctest --output-on-failure -j $(JOBS) -LE long
 
 test-long: build

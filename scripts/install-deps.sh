@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages vobench needs, only those missing, non-interactively.
-# Used by `make demo` and `make test`; safe to run again (it does nothing when all are present).
+# Used by `make demo` and (with --test: what the tests also need) `make test`; safe to run again (it
+# does nothing when all are present).
 set -euo pipefail
 
 packages=(
@@ -12,8 +13,16 @@ packages=(
   catch2 libbenchmark-dev
   binutils                              # nm, for the exported-symbol test
   curl                                  # datasets/fetch.sh
-  clang libclang-rt-14-dev              # libFuzzer targets of the text parsers
+  clang libclang-rt-14-dev              # libFuzzer targets of the text parsers (found when configuring)
+  gnuplot-nox                           # the report's figures
 )
+if [ "${1:-}" = "--test" ]; then
+  packages+=(
+    python3 python3-jsonschema          # leaderboard.json against its JSON Schema
+    chromium                            # report.html opened headless
+    procps                              # pgrep/pkill in the sweep and Slurm tests
+  )
+fi
 
 missing=()
 for p in "${packages[@]}"; do

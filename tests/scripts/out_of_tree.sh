@@ -30,14 +30,14 @@ grep -q '"frames": 20' track.json
 test -s run/trajectory.txt
 # 6. put it in the table
 cat > mine.yaml <<'YAML'
-frames: 20
-sequences:
-  - {sensor: kinect1, trajectory: speed2}
+datasets:
+  - {name: sim, synthetic: {trajectories: [speed2], sensors: [kinect1], frames: 20, cache: datasets}}
 algorithms:
   - {plugin: put_vo}
   - {plugin: my_vo}
 YAML
-VOBENCH_PLUGIN_PATH=my_vo/build "$vobench" -q demo --config mine.yaml --data datasets --out results/mine
-grep -q "| speed2 | kinect1 | my_vo |" results/mine/summary.md
-grep -q "| speed2 | kinect1 | put_vo |" results/mine/summary.md
+VOBENCH_PLUGIN_PATH=my_vo/build "$vobench" -q run mine.yaml --out results/mine
+grep -q "### my_vo" results/mine/summary.md
+grep -q "### put_vo" results/mine/summary.md
+grep -q '"entry": "my_vo"' results/mine/leaderboard.json
 echo "from nothing to a row in the table: done"

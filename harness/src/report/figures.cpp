@@ -137,10 +137,12 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b], r->evaluation->ate->errors[k]);
             Figure f{"traj", fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor), r->evaluation->ate->stats.rmse),
                      file_safe("traj_" + entry + "_" + g.row_label() + "_" + g.sensor), false};
+            // Equal axis scales, unless the path is nearly a line (then the plot would be a sliver).
+            const bool equal = std::min(extent[a], extent[b]) > 0.15 * std::max(extent[a], extent[b]);
             const std::string setup = fmt::format(
-                "set title {}\nset xlabel '{} [m]'\nset ylabel '{} [m]'\nset size ratio -1\nset grid\nset cblabel 'ATE [m]'\n"
+                "set title {}\nset xlabel '{} [m]'\nset ylabel '{} [m]'\n{}set grid\nset cblabel 'ATE [m]'\n"
                 "set palette defined (0 '#2c7bb6', 0.5 '#ffffbf', 1 '#d7191c')\nset key bottom right",
-                gq(f.title), axis[a], axis[b]);
+                gq(f.title), axis[a], axis[b], equal ? "set size ratio -1\n" : "");
             const std::string plot = fmt::format("plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
                                                  "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
                                                  f.stem);

@@ -366,7 +366,7 @@ SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& regist
             YAML::Node at = item;
             if (item.IsMap()) {
                 r.only_keys(item, {"criterion", "required"}, "a criterion");
-                at = r.required(item, "criterion", "a criterion");
+                at.reset(r.required(item, "criterion", "a criterion"));  // reset: `=` would overwrite the node itself
                 text = r.scalar<std::string>(at, "criterion");
                 if (item["required"]) required = r.scalar<bool>(item["required"], "required");
             } else {
