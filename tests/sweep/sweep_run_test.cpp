@@ -146,7 +146,7 @@ TEST_CASE("finished cells are kept: --resume skips them, a plain rerun refuses",
     CHECK(fs::exists(out / "summary.tex"));
 }
 
-TEST_CASE("-j 2 computes exactly what -j 1 computes", "[sweep]") {
+TEST_CASE("two cells at a time (-j 2) compute exactly what one at a time does", "[sweep]") {
     test::TempDir dir;
     const fs::path config = dir.path() / "s.yaml";
     std::ofstream(config) << "datasets:\n  - {name: a, reader: tum, path: " << tiny_sequence("kinect1", "speed2").string() << "}\n"

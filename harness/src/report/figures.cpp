@@ -5,11 +5,13 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <atomic>
 #include <cerrno>
 #include <fcntl.h>
 #include <cstring>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <thread>
 #include <unistd.h>
 
 extern char** environ;
@@ -77,8 +79,19 @@ const RunRecord* first_ok(const RunGroup* g) {
 void emit(std::vector<Figure>& out, const fs::path& folder, Figure f, const std::string& data, const std::string& gp) {
     metrics::write_file_atomic(folder / (f.stem + ".dat"), data);
     metrics::write_file_atomic(folder / (f.stem + ".gp"), gp);
-    f.drawn = have_gnuplot() && run_gnuplot(folder, f.stem);
     out.push_back(f);
+}
+
+// One gnuplot per figure, as many at once as there are cores.
+void draw_all(std::vector<Figure>& figures, const fs::path& folder) {
+    if (!have_gnuplot()) return;
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> pool;
+    for (unsigned k = 0; k < std::max(1u, std::thread::hardware_concurrency()); ++k)
+        pool.emplace_back([&] {
+            for (std::size_t i; (i = next++) < figures.size();) figures[i].drawn = run_gnuplot(folder, figures[i].stem);
+        });
+    for (std::thread& t : pool) t.join();
 }
 
 }  // namespace
@@ -179,6 +192,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                                              gq(f.title), ate_plot, rpe_plot);
         emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
     }
+    draw_all(figures, folder);
     return figures;
 }
 

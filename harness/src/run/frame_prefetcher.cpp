@@ -19,7 +19,9 @@ OwnedFrame::OwnedFrame(const vobench_frame& f) {
 }
 
 FramePrefetcher::FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth, const FrameCache* cache)
-    : dataset_(dataset), cache_(cache), count_(count), depth_(depth == 0 ? 1 : depth), thread_([this] { run(); }) {}
+    : dataset_(dataset), cache_(cache), count_(count), depth_(depth) {
+    if (depth_ > 0) thread_ = std::thread([this] { run(); });
+}
 
 FramePrefetcher::~FramePrefetcher() {
     {
@@ -27,7 +29,14 @@ FramePrefetcher::~FramePrefetcher() {
         stop_ = true;
     }
     changed_.notify_all();
-    thread_.join();
+    if (thread_.joinable()) thread_.join();
+}
+
+std::unique_ptr<OwnedFrame> FramePrefetcher::read(uint64_t i, bool from_cache) {
+    if (from_cache) return cache_->load(i);
+    auto frame = std::make_unique<OwnedFrame>(dataset_.read(i));
+    if (cache_) cache_->store(i, frame->frame);
+    return frame;
 }
 
 void FramePrefetcher::run() {
@@ -40,12 +49,7 @@ void FramePrefetcher::run() {
         }
         std::unique_ptr<OwnedFrame> frame;
         try {
-            if (from_cache) {
-                frame = cache_->load(i);
-            } else {
-                frame = std::make_unique<OwnedFrame>(dataset_.read(i));
-                if (cache_) cache_->store(i, frame->frame);
-            }
+            frame = read(i, from_cache);
         } catch (...) {
             std::lock_guard<std::mutex> lock(mutex_);
             error_ = std::current_exception();
@@ -65,6 +69,15 @@ void FramePrefetcher::run() {
 }
 
 std::unique_ptr<OwnedFrame> FramePrefetcher::next() {
+    if (depth_ == 0) {
+        const bool from_cache = cache_ != nullptr && cache_->complete();
+        if (next_index_ < count_) return read(next_index_++, from_cache);
+        if (cache_ && !from_cache && count_ == dataset_.info().frame_count && next_index_ == count_) {
+            cache_->mark_complete(count_);
+            ++next_index_;
+        }
+        return nullptr;
+    }
     std::unique_lock<std::mutex> lock(mutex_);
     changed_.wait(lock, [this] { return !queue_.empty() || done_; });
     if (!queue_.empty()) {

@@ -35,7 +35,9 @@ class FrameCache;
 
 class FramePrefetcher {
 public:
-    // Reads frames [0, count) of `dataset`, at most `depth` ahead of the consumer. With a cache: from
+    // Reads frames [0, count) of `dataset`, at most `depth` ahead of the consumer; `depth` 0 reads
+    // each frame in next(), on the caller's thread (one core per run: a sweep cell with threads: 1,
+    // so that -j N on N cores scales). With a cache: from
     // it when complete, else from the reader, storing each frame (and marking the cache complete when
     // the whole sequence went through).
     FramePrefetcher(DatasetInstance& dataset, uint64_t count, std::size_t depth = 4, const FrameCache* cache = nullptr);
@@ -48,6 +50,8 @@ public:
 
 private:
     void run();
+    std::unique_ptr<OwnedFrame> read(uint64_t index, bool from_cache);
+    uint64_t next_index_ = 0;  // depth 0 only
 
     DatasetInstance& dataset_;
     const FrameCache* cache_;

@@ -49,7 +49,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     if (!options.frame_cache.empty())
         cache = std::make_unique<FrameCache>(options.frame_cache / sequence_key(dataset.plugin(), options.dataset_options, options.path));
     if (options.on_start) options.on_start(info, odometry.plugin());
-    FramePrefetcher frames(dataset, count, 4, cache.get());  // decoding overlaps the plugin, on another thread
+    FramePrefetcher frames(dataset, count, options.prefetch_depth, cache.get());  // decoding overlaps the plugin, on another thread
     const auto loop_start = std::chrono::steady_clock::now();
     for (uint64_t i = 0; i < count; ++i) {
         std::unique_ptr<OwnedFrame> owned;

@@ -37,6 +37,7 @@ struct TrackOptions {
     uint64_t seed = 1;
     metrics::Protocol protocol;
     std::filesystem::path frame_cache;  // root of the decoded-frame cache; empty: no cache
+    std::size_t prefetch_depth = 4;     // frames decoded ahead on another thread; 0: on this thread
     bool evaluate = true;               // false: the caller evaluates (an isolated cell's supervisor)
     // Called once the sequence is open and the plugin started, and after each frame, outside the
     // timed window: an isolated cell streams its results to disk so that a crash loses nothing.

@@ -168,6 +168,9 @@ int exec_cell(const fs::path& work) {
     t.seed = cell.seed;
     t.max_frames = cell.max_frames;
     t.evaluate = false;
+    // One thread means one core: frames are decoded between process() calls (still outside the
+    // timed window) instead of on a prefetch thread, so N cells on N cores do not compete.
+    t.prefetch_depth = cell.limits.threads > 1 ? 4 : 0;
     t.on_start = [&](const vobench_sequence_info& info, const PluginLibrary& plugin) {
         metrics::write_tum(work / "groundtruth.txt", ground_truth_of(info), "ground truth as the reader delivered it");
         const vobench_camera& c = *info.camera;
