@@ -17,6 +17,7 @@ void add_traj_command(CLI::App& app, int& exit_code);
 void add_data_command(CLI::App& app, int& exit_code);
 void add_synth_command(CLI::App& app, int& exit_code);
 void add_run_commands(CLI::App& app, int& exit_code);  // run, report, cell-exec
+void add_gt_commands(CLI::App& app, int& exit_code);   // gt compare, gt fuse
 void add_new_plugin_command(CLI::App& app, int& exit_code);
 
 // "k=v" items into a map; throws CLI::ValidationError naming the bad item.

@@ -53,6 +53,7 @@ int main(int argc, char** argv) {
     vobench::cli::add_data_command(app, exit_code);
     vobench::cli::add_synth_command(app, exit_code);
     vobench::cli::add_run_commands(app, exit_code);
+    vobench::cli::add_gt_commands(app, exit_code);
     vobench::cli::add_new_plugin_command(app, exit_code);
 
     try {
