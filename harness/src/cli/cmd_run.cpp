@@ -4,6 +4,7 @@
 #include "report/report_writer.hpp"
 #include "sweep/cell_runner.hpp"
 #include "sweep/local_scheduler.hpp"
+#include "sweep/slurm_backend.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -29,7 +30,8 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     auto* run = app.add_subcommand("run", "Run a sweep from a YAML config: every cell in its own process, then the report");
     static std::string config_file, out, only, backend;
     static int jobs = 1;
-    static bool resume = false, fresh = false, dry_run = false;
+    static bool resume = false, fresh = false, dry_run = false, detach = false;
+    static SlurmOptions slurm;
     run->add_option("config", config_file, "Sweep configuration (YAML); see configs/README.md")->required();
     run->add_option("--out", out, "Output folder (default: the config's output:)");
     run->add_option("-j,--jobs", jobs, "Cells run at once (each one process)")->check(CLI::Range(1, 1024))->capture_default_str();
@@ -37,6 +39,15 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     run->add_flag("--fresh", fresh, "Set earlier results in the output folder aside and start again");
     run->add_option("--only", only, "Run only cells whose dataset/sequence/sensor/algorithm/id matches this wildcard");
     run->add_flag("--dry-run", dry_run, "Validate and list the cells; run and render nothing");
+    run->add_option("--backend", backend, "local or slurm (default: the config's backend:, else local)")->check(CLI::IsMember({"local", "slurm"}));
+    run->add_option("--partition", slurm.partition, "slurm: sbatch --partition")->group("Slurm");
+    run->add_option("--account", slurm.account, "slurm: sbatch --account")->group("Slurm");
+    run->add_option("--time", slurm.time, "slurm: sbatch --time per array task, e.g. 2:00:00")->group("Slurm");
+    run->add_option("--mem", slurm.mem, "slurm: sbatch --mem per array task, e.g. 8G")->group("Slurm");
+    run->add_option("--array-limit", slurm.array_limit, "slurm: at most K array tasks at once")->group("Slurm");
+    run->add_option("--chunk", slurm.chunk, "slurm: cells per array task")->check(CLI::Range(1, 100000))->capture_default_str()->group("Slurm");
+    run->add_option("--poll", slurm.poll_s, "slurm: seconds between squeue calls")->check(CLI::Range(1, 3600))->capture_default_str()->group("Slurm");
+    run->add_flag("--detach", detach, "slurm: return after submitting; `vobench collect DIR` finishes")->group("Slurm");
     run->callback([&exit_code] {
         const PluginRegistry registry;
         const SweepConfig config = load_sweep_config(config_file, registry, !dry_run);
@@ -59,16 +70,28 @@ void add_run_commands(CLI::App& app, int& exit_code) {
             exit_code = 0;
             return;
         }
-        if (config.backend != "local")
-            throw std::runtime_error("backend '" + config.backend + "' is not available in this build; use backend: local");
+        const std::string chosen = backend.empty() ? config.backend : backend;
         fs::create_directories(o.out);
         prepare_output(cells, o);
         metrics::write_file_atomic(o.out / "sweep.json", sweep_record(config).dump(2) + "\n");
         nlohmann::json list = nlohmann::json::array();
         for (const Cell& c : cells) list.push_back(cell_to_json(c));
         metrics::write_file_atomic(o.out / "cells.json", list.dump(1) + "\n");
-        spdlog::info("{}: {} cells, -j {}, output {}", config.file.string(), cells.size(), o.jobs, o.out.string());
-        const SweepTally t = run_local(cells, o);
+        SweepTally t;
+        if (chosen == "slurm") {
+            spdlog::info("{}: {} cells on Slurm, output {}", config.file.string(), cells.size(), o.out.string());
+            const std::string job = submit_slurm(pending_cells(cells, o), o.out, slurm, config.limits.threads);
+            if (job.empty()) spdlog::info("every cell is finished; nothing to submit");
+            if (detach) {
+                std::cout << fmt::format("Submitted Slurm job {}. When it ends: vobench collect {}\n", job, o.out.string());
+                exit_code = 0;
+                return;
+            }
+            t = follow_slurm(o.out, slurm.poll_s);
+        } else {
+            spdlog::info("{}: {} cells, -j {}, output {}", config.file.string(), cells.size(), o.jobs, o.out.string());
+            t = run_local(cells, o);
+        }
         spdlog::info("sweep finished: {} cells run ({} failed), {} skipped, {} frames in {:.1f} s", t.ran, t.failed, t.skipped, t.frames, t.wall_s);
         const ReportResult r = write_report(o.out);
         print_report(r, o.out);
@@ -83,6 +106,29 @@ void add_run_commands(CLI::App& app, int& exit_code) {
         print_report(r, report_dir);
         exit_code = r.failed_required.empty() ? 0 : 1;
     });
+
+    auto* collect = app.add_subcommand("collect", "Follow a detached Slurm sweep in DIR to its end, record failed tasks, write the report");
+    static std::string collect_dir;
+    static int collect_poll = 5;
+    collect->add_option("dir", collect_dir, "The sweep's output folder")->required()->check(CLI::ExistingDirectory);
+    collect->add_option("--poll", collect_poll, "Seconds between squeue calls")->capture_default_str();
+    collect->callback([&exit_code] {
+        const SweepTally t = follow_slurm(collect_dir, collect_poll);
+        spdlog::info("collected: {} cells ({} failed)", t.cells, t.failed);
+        const ReportResult r = write_report(collect_dir);
+        print_report(r, collect_dir);
+        exit_code = r.failed_required.empty() ? 0 : 1;
+    });
+
+    // Internal: one Slurm array task (see sweep/slurm_backend.hpp).
+    auto* batch = app.add_subcommand("run-cell", "Run cells of a sweep's batch file (what a Slurm array task does)")->group("");
+    static std::string batch_out, batch_file;
+    static int batch_task = 0, batch_chunk = 1;
+    batch->add_option("out", batch_out)->required();
+    batch->add_option("--batch", batch_file)->required();
+    batch->add_option("--task", batch_task)->required();
+    batch->add_option("--chunk", batch_chunk)->required();
+    batch->callback([&exit_code] { exit_code = run_cell_batch(batch_out, batch_file, batch_task, batch_chunk); });
 
     // Internal: the child process of one cell (see sweep/cell_runner.hpp).
     auto* exec = app.add_subcommand("cell-exec", "")->group("");

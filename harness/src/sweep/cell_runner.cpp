@@ -212,7 +212,10 @@ int exec_cell(const fs::path& work) {
     return 0;
 }
 
-CellOutcome run_cell(const Cell& cell, const fs::path& out) {
+namespace {
+
+// Runs the cell's child unless `not_run_reason` is given, then turns whatever it left into runs/<id>/.
+CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason) {
     const fs::path work = out / "runs" / ".work" / cell.id;
     const fs::path final_dir = out / "runs" / cell.id;
     fs::remove_all(work);
@@ -222,7 +225,8 @@ CellOutcome run_cell(const Cell& cell, const fs::path& out) {
 
     ChildResult child;
     bool ran = false;
-    if (cell.load_error.empty()) {
+    if (!cell.load_error.empty()) not_run_reason = "plugin '" + cell.plugin + "' refused to load: " + cell.load_error;
+    if (not_run_reason.empty()) {
         ChildLimits limits;
         limits.timeout_s = cell.limits.timeout_s;
         limits.memory_mb = cell.limits.memory_mb;
@@ -241,7 +245,7 @@ CellOutcome run_cell(const Cell& cell, const fs::path& out) {
     o.id = cell.id;
     o.frames = frames.frames.size();
     if (!ran) {
-        o.reason = "plugin '" + cell.plugin + "' refused to load: " + cell.load_error;
+        o.reason = not_run_reason;
     } else if (result.is_object() && child.exited && child.exit_code == 0) {
         o.ok = result.value("status", "") == "ok";
         o.reason = result.value("error", "");
@@ -284,5 +288,11 @@ CellOutcome run_cell(const Cell& cell, const fs::path& out) {
     o.wall_s = child.wall_s;
     return o;
 }
+
+}  // namespace
+
+CellOutcome run_cell(const Cell& cell, const fs::path& out) { return finish_cell(cell, out, ""); }
+
+CellOutcome record_unrun_cell(const Cell& cell, const fs::path& out, const std::string& reason) { return finish_cell(cell, out, reason); }
 
 }  // namespace vobench

@@ -30,6 +30,10 @@ struct CellOutcome {
 // throws std::runtime_error only when the output folder cannot be written.
 CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out);
 
+// The failed row of a cell that never ran (e.g. its Slurm array task was cancelled or timed out):
+// runs/<id>/ with run.json giving `reason`, written the same atomic way.
+CellOutcome record_unrun_cell(const Cell& cell, const std::filesystem::path& out, const std::string& reason);
+
 // The child side (`vobench cell-exec WORKDIR`): reads WORKDIR/cell.json, runs the track, streams
 // frames.jsonl and writes result.json. Returns the process exit code (0 when result.json was written).
 int exec_cell(const std::filesystem::path& work_dir);

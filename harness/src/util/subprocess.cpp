@@ -47,12 +47,9 @@ void decode_status(int status, ChildResult& r) {
     }
 }
 
-}  // namespace
-
-ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
-    const std::string exe = boost::dll::program_location().string();
-    std::vector<std::string> argv_storage{exe};
-    argv_storage.insert(argv_storage.end(), args.begin(), args.end());
+// posix_spawn(p) of argv_storage[0] with the limits; `search` looks the program up on PATH.
+ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimits& limits, bool search) {
+    const std::string exe = argv_storage.front();
     std::vector<char*> argv;
     for (std::string& a : argv_storage) argv.push_back(a.data());
     argv.push_back(nullptr);
@@ -65,7 +62,8 @@ ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLi
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     pid_t pid = 0;
     const auto start = std::chrono::steady_clock::now();
-    const int rc = posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    const int rc = search ? posix_spawnp(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ)
+                          : posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
 
@@ -98,18 +96,43 @@ ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLi
     return result;
 }
 
-ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
-    ChildLimits limits;
-    limits.timeout_s = timeout_s;
-    limits.log = fs::temp_directory_path() / ("vobench-child-" + std::to_string(::getpid()) + "-" +
-                                              std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".log");
-    ChildResult result = run_self_limited(args, limits);
-    std::ifstream in(limits.log);
+fs::path temporary_log() {
+    return fs::temp_directory_path() / ("vobench-child-" + std::to_string(::getpid()) + "-" +
+                                        std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()) + ".log");
+}
+
+void take_output(ChildResult& result, const fs::path& log) {
+    std::ifstream in(log);
     std::ostringstream ss;
     ss << in.rdbuf();
     result.output = ss.str();
     std::error_code ec;
-    fs::remove(limits.log, ec);
+    fs::remove(log, ec);
+}
+
+}  // namespace
+
+ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
+    std::vector<std::string> argv{boost::dll::program_location().string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return spawn_limited(argv, limits, false);
+}
+
+ChildResult run_program(const std::vector<std::string>& argv, int timeout_s) {
+    ChildLimits limits;
+    limits.timeout_s = timeout_s;
+    limits.log = temporary_log();
+    ChildResult result = spawn_limited(argv, limits, true);
+    take_output(result, limits.log);
+    return result;
+}
+
+ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
+    ChildLimits limits;
+    limits.timeout_s = timeout_s;
+    limits.log = temporary_log();
+    ChildResult result = run_self_limited(args, limits);
+    take_output(result, limits.log);
     return result;
 }
 

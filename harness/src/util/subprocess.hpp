@@ -38,6 +38,10 @@ struct ChildResult {
 // Runs <this executable> args... under `limits`. Throws std::runtime_error if it cannot start.
 ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits);
 
+// Runs another program (looked up on PATH) with output captured into ChildResult::output.
+// Throws std::runtime_error if it cannot start.
+ChildResult run_program(const std::vector<std::string>& argv, int timeout_s);
+
 // As above with the output captured into ChildResult::output (a temporary log file).
 ChildResult run_self(const std::vector<std::string>& args, int timeout_s);
 
