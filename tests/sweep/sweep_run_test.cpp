@@ -92,6 +92,8 @@ TEST_CASE("every fault becomes a failed row with its reason, and the sweep compl
     CHECK(reasons.count("healthy") == 0);
     CHECK(reasons.count("stdout_garbage") == 0);  // noise on stdout/stderr is the plugin's business, not a result
     CHECK(failed_at["abort"] == 3);
+    // Undeclared in the config: the reader declares it (a rendered sequence: exact, 0).
+    CHECK(lb["entries"][0]["cells"][0]["gt_accuracy"]["position_m"] == 0.0);
 
     // Partial trajectories are kept and marked: the three frames before the fault.
     for (const auto& e : lb["entries"]) {
@@ -124,7 +126,8 @@ TEST_CASE("every fault becomes a failed row with its reason, and the sweep compl
 TEST_CASE("finished cells are kept: --resume skips them, a plain rerun refuses", "[sweep]") {
     test::TempDir dir;
     const fs::path config = dir.path() / "s.yaml";
-    std::ofstream(config) << "datasets:\n  - {name: tiny, reader: tum, path: " << tiny_sequence().string() << "}\n"
+    std::ofstream(config) << "datasets:\n  - {name: tiny, reader: tum, path: " << tiny_sequence().string()
+                          << ", ground_truth_accuracy: {position_m: 0.5, rotation_deg: 30}}\n"
                              "algorithms:\n  - {plugin: constant_pose}\n  - {plugin: orb_matching}\n";
     const fs::path out = dir.path() / "out";
     std::string log;
@@ -139,6 +142,10 @@ TEST_CASE("finished cells are kept: --resume skips them, a plain rerun refuses",
 
     // The report is rebuilt from runs/ alone.
     const nlohmann::json lb = json_of(out / "leaderboard.json");
+    // The config's declared ground-truth accuracy flags metrics within it (here: everything).
+    CHECK(lb["entries"][0]["cells"][0]["gt_accuracy"]["position_m"] == 0.5);
+    CHECK_THAT(lb["entries"][0]["cells"][0]["within_gt_error"].dump(), Contains("ate.rmse"));
+    CHECK_THAT(slurp(out / "summary.md"), Contains("‡"));
     for (const char* f : {"summary.md", "summary.csv", "summary.tex", "leaderboard.json", "report.html", "sweep.json"}) fs::remove(out / f);
     REQUIRE(test::run_command(test::cli().string() + " report " + out.string() + " 2>&1", log) == 0);
     const nlohmann::json again = json_of(out / "leaderboard.json");

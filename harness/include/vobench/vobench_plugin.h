@@ -63,7 +63,9 @@ extern "C" {
 /* ===== Versions and the entry symbol ============================================================ */
 
 #define VOBENCH_ABI_VERSION 1u
-#define VOBENCH_API_VERSION 1u
+/* API history: 1 — first release; 2 — vobench_sequence_info gains gt_position_sigma_m and
+ * gt_rotation_sigma_deg (the reader's declared ground-truth accuracy). */
+#define VOBENCH_API_VERSION 2u
 
 /* The name of the one exported function, with the ABI generation in it. */
 #define VOBENCH_ENTRY_SYMBOL "vobench_plugin_entry_v1"
@@ -256,6 +258,11 @@ typedef struct vobench_sequence_info {
      * NULL when the sequence has none. Never given to odometry plugins by the host. */
     const double* ground_truth;
     uint64_t gt_count;
+    /* API 2. The declared 1σ accuracy of the ground truth (Ceriani et al. 2009: ground truth has an error
+     * of its own): position in metres, rotation in degrees. 0: exact (rendered data); negative: not
+     * known. A host reads them only when struct_size covers them; an API-1 reader means "not known". */
+    double gt_position_sigma_m;
+    double gt_rotation_sigma_deg;
 } vobench_sequence_info;
 
 typedef struct vobench_dataset_api {

@@ -196,7 +196,7 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
         if (std::find(seen.begin(), seen.end(), g.dataset) != seen.end()) continue;
         seen.push_back(g.dataset);
         const auto& acc = g.runs.front()->cell.gt_accuracy;
-        const auto show = [](double v) { return v > 0 ? fmt::format("{:g}", v) : v == 0 ? std::string("exact / not declared") : std::string("unknown"); };
+        const auto show = [](double v) { return v > 0 ? fmt::format("{:g}", v) : v == 0 ? std::string("exact") : std::string("not known"); };
         h += "<tr><td class=\"l\">" + html_escape(g.dataset) + "</td><td>" + show(acc.position_m) + "</td><td>" + show(acc.rotation_deg) + "</td></tr>\n";
     }
     h += "</tbody></table>\n";

@@ -70,6 +70,10 @@ std::vector<RunRecord> load_runs(const fs::path& out) {
             r.ok = r.run.at("status") == "ok";
             r.reason = r.run.value("reason", "");
             r.partial = r.run.value("partial", false);
+            // Undeclared in the config: the reader's declaration (when it made one).
+            const nlohmann::json seq = r.run.value("sequence", nlohmann::json::object());
+            if (r.cell.gt_accuracy.position_m < 0) r.cell.gt_accuracy.position_m = seq.value("gt_position_sigma_m", -1.0);
+            if (r.cell.gt_accuracy.rotation_deg < 0) r.cell.gt_accuracy.rotation_deg = seq.value("gt_rotation_sigma_deg", -1.0);
             r.evaluation = evaluate_run(r.dir, r.cell.protocol, r.evaluation_error);
             if (r.evaluation) r.metrics = flatten(*r.evaluation);
             const nlohmann::json& t = r.run.at("timing");

@@ -180,6 +180,9 @@ int exec_cell(const fs::path& work) {
                          {"sensor", info.sensor ? info.sensor : ""},
                          {"frame_count", info.frame_count},
                          {"frames_to_run", expected},
+                         // The reader's declared ground-truth accuracy (API 2; -1: not known or an API-1 reader).
+                         {"gt_position_sigma_m", VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_position_sigma_m) ? info.gt_position_sigma_m : -1.0},
+                         {"gt_rotation_sigma_deg", VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_rotation_sigma_deg) ? info.gt_rotation_sigma_deg : -1.0},
                          {"camera", {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}}}});
         const vobench_plugin_descriptor& d = plugin.descriptor();
         write_json_file(work / "plugin.json", {{"name", plugin.name()},

@@ -212,7 +212,8 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
         r.only_keys(acc, {"position_m", "rotation_deg"}, "ground_truth_accuracy");
         if (acc["position_m"]) s.gt_accuracy.position_m = r.scalar<double>(acc["position_m"], "position_m");
         if (acc["rotation_deg"]) s.gt_accuracy.rotation_deg = r.scalar<double>(acc["rotation_deg"], "rotation_deg");
-        if (s.gt_accuracy.position_m < 0 || s.gt_accuracy.rotation_deg < 0) r.fail(acc, "accuracies are non-negative");
+        if ((acc["position_m"] && s.gt_accuracy.position_m < 0) || (acc["rotation_deg"] && s.gt_accuracy.rotation_deg < 0))
+            r.fail(acc, "accuracies are non-negative (0: exact)");
     }
     if (check_paths && !s.synthetic) {
         const std::vector<std::string> sensors = s.sensors.empty() ? std::vector<std::string>{""} : s.sensors;

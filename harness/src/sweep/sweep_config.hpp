@@ -31,9 +31,10 @@ struct SyntheticSpec {
 };
 
 // Declared accuracy of a data set's ground truth (Ceriani et al. 2009): a metric below it is noise.
+// Negative: not declared here (the reader's own declaration, if any, is used); 0: exact.
 struct GroundTruthAccuracy {
-    double position_m = 0;   // 1σ; 0: not declared
-    double rotation_deg = 0;
+    double position_m = -1;  // 1σ, m
+    double rotation_deg = -1;  // 1σ, °
 };
 
 struct DatasetSpec {

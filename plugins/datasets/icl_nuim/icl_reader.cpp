@@ -89,7 +89,8 @@ public:
         else load_ground_truth(o.get_string("ground_truth"));
         name_ = fs::absolute(root_).lexically_normal().filename().string();
         info_ = {sizeof(info_), name_.c_str(), "icl_nuim", &camera_, first.cols, first.rows, depth_scale(),
-                 frames_.size(), ground_truth_.empty() ? nullptr : ground_truth_.data(), ground_truth_.size() / 8};
+                 frames_.size(), ground_truth_.empty() ? nullptr : ground_truth_.data(), ground_truth_.size() / 8,
+                 0.0, 0.0};  // rendered by POV-Ray: the poses are exact
     }
 
     const vobench_sequence_info& describe() override {
