@@ -44,4 +44,11 @@ void to_json(nlohmann::json& j, const ErrorStats& s) {
                        {"min", s.min},   {"max", s.max},   {"sse", s.sse},       {"count", s.count}};
 }
 
+double percentile_nearest_rank(std::vector<double> values, double q) {
+    if (values.empty()) throw std::invalid_argument("percentile of an empty series");
+    std::sort(values.begin(), values.end());
+    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+    return values[std::min(values.size() - 1, rank == 0 ? 0 : rank - 1)];
+}
+
 }  // namespace vobench::metrics

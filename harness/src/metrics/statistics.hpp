@@ -19,4 +19,8 @@ ErrorStats compute_stats(const std::vector<double>& values);
 
 void to_json(nlohmann::json& j, const ErrorStats& s);
 
+// The nearest-rank q-quantile (0 < q <= 1): the smallest value with at least q of the series at or
+// below it. Throws std::invalid_argument on an empty series.
+double percentile_nearest_rank(std::vector<double> values, double q);
+
 }  // namespace vobench::metrics

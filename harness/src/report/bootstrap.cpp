@@ -1,5 +1,7 @@
 #include "report/bootstrap.hpp"
 
+#include "metrics/statistics.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <random>
@@ -18,14 +20,8 @@ std::pair<double, double> bootstrap_mean_ci(const std::vector<double>& values, c
         for (std::size_t k = 0; k < values.size(); ++k) sum += values[pick(rng)];
         m = sum / static_cast<double>(values.size());
     }
-    std::sort(means.begin(), means.end());
-    // Quantiles by the nearest-rank rule on the sorted resample means.
-    const auto at = [&](double q) {
-        const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(means.size())));
-        return means[std::min(means.size() - 1, rank == 0 ? 0 : rank - 1)];
-    };
     const double alpha = (1.0 - o.confidence) / 2.0;
-    return {at(alpha), at(1.0 - alpha)};
+    return {metrics::percentile_nearest_rank(means, alpha), metrics::percentile_nearest_rank(means, 1.0 - alpha)};
 }
 
 }  // namespace vobench

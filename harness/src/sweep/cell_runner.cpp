@@ -1,5 +1,6 @@
 #include "sweep/cell_runner.hpp"
 
+#include "metrics/statistics.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "report/run_record.hpp"
 #include "run/track.hpp"
@@ -75,13 +76,6 @@ TrackResult read_frames(const fs::path& file) {
     return r;
 }
 
-double percentile(std::vector<double> v, double q) {  // nearest rank
-    if (v.empty()) return 0;
-    std::sort(v.begin(), v.end());
-    const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(v.size())));
-    return v[std::min(v.size() - 1, rank == 0 ? 0 : rank - 1)];
-}
-
 // Per-frame times of the plugin's process() call only (steady clock, ns → ms), and the stages.
 nlohmann::json timing_summary(const TrackResult& r, const nlohmann::json& result, const ChildResult& child) {
     std::vector<double> ms;
@@ -97,20 +91,16 @@ nlohmann::json timing_summary(const TrackResult& r, const nlohmann::json& result
         }
     }
     const double n = static_cast<double>(std::max<std::size_t>(1, ms.size()));
-    double mean = timed_ns * 1e-6 / n;
     nlohmann::json stages = nlohmann::json::array();
     for (const std::string& s : order) stages.push_back({{"stage", s}, {"mean_ms", stage_ns[s] * 1e-6 / n}});
-    std::vector<double> sorted = ms;
-    std::sort(sorted.begin(), sorted.end());
-    const double median = sorted.empty() ? 0 : (sorted.size() % 2 ? sorted[sorted.size() / 2]
-                                                                   : 0.5 * (sorted[sorted.size() / 2 - 1] + sorted[sorted.size() / 2]));
+    const metrics::ErrorStats stats = ms.empty() ? metrics::ErrorStats{} : metrics::compute_stats(ms);  // numpy semantics
     const double loop_wall_s = result.is_object() ? result.value("loop_wall_ns", 0.0) * 1e-9 : 0.0;
     nlohmann::json j{{"frames", ms.size()},
-                     {"mean_ms", mean},
-                     {"median_ms", median},
-                     {"p95_ms", percentile(ms, 0.95)},
-                     {"max_ms", sorted.empty() ? 0.0 : sorted.back()},
-                     {"fps", mean > 0 ? 1000.0 / mean : 0.0},
+                     {"mean_ms", stats.mean},
+                     {"median_ms", stats.median},
+                     {"p95_ms", ms.empty() ? 0.0 : metrics::percentile_nearest_rank(ms, 0.95)},
+                     {"max_ms", stats.max},
+                     {"fps", stats.mean > 0 ? 1000.0 / stats.mean : 0.0},
                      {"stages", stages},
                      {"timed_s", timed_ns * 1e-9},
                      {"child_wall_s", child.wall_s},

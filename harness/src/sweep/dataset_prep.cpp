@@ -83,24 +83,19 @@ std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginReg
     }
     bool reader_takes_sensor = false;
     for (const auto& p : registry.find(d.reader, VOBENCH_KIND_DATASET)->params()) reader_takes_sensor |= p.name == "sensor";
-    const std::vector<std::string> sensors = d.sensors.empty() ? std::vector<std::string>{""} : d.sensors;
-    const std::vector<std::string> sequences = d.sequences.empty() ? std::vector<std::string>{""} : d.sequences;
-    for (const std::string& sequence : sequences)
-        for (const std::string& sensor : sensors) {
-            std::string base = d.path;
-            if (const auto at = base.find("{sensor}"); at != std::string::npos) base.replace(at, 8, sensor);
-            SequenceRef ref;
-            ref.path = sequence.empty() ? fs::path(base) : fs::path(base) / sequence;
-            ref.name = sequence.empty() ? ref.path.lexically_normal().filename().string() : sequence;
-            if (ref.name.empty()) ref.name = ref.path.lexically_normal().parent_path().filename().string();
-            ref.sensor = sensor;
-            ref.reader = d.reader;
-            ref.options = d.options;
-            if (!sensor.empty() && reader_takes_sensor) ref.options["sensor"] = sensor;
-            if (!fs::is_directory(ref.path))
-                throw std::runtime_error(fmt::format("dataset '{}' ({}): no such sequence folder: {}", d.name, d.where, ref.path.string()));
-            out.push_back(ref);
-        }
+    for (const DatasetSpec::Folder& f : d.folders()) {
+        SequenceRef ref;
+        ref.path = f.path;
+        ref.name = f.sequence.empty() ? ref.path.lexically_normal().filename().string() : f.sequence;
+        if (ref.name.empty()) ref.name = ref.path.lexically_normal().parent_path().filename().string();
+        ref.sensor = f.sensor;
+        ref.reader = d.reader;
+        ref.options = d.options;
+        if (!f.sensor.empty() && reader_takes_sensor) ref.options["sensor"] = f.sensor;
+        if (!fs::is_directory(ref.path))
+            throw std::runtime_error(fmt::format("dataset '{}' ({}): no such sequence folder: {}", d.name, d.where, ref.path.string()));
+        out.push_back(ref);
+    }
     return out;
 }
 

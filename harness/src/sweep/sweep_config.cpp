@@ -215,18 +215,9 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
         if ((acc["position_m"] && s.gt_accuracy.position_m < 0) || (acc["rotation_deg"] && s.gt_accuracy.rotation_deg < 0))
             r.fail(acc, "accuracies are non-negative (0: exact)");
     }
-    if (check_paths && !s.synthetic) {
-        const std::vector<std::string> sensors = s.sensors.empty() ? std::vector<std::string>{""} : s.sensors;
-        const std::vector<std::string> sequences = s.sequences.empty() ? std::vector<std::string>{""} : s.sequences;
-        for (const std::string& sensor : sensors)
-            for (const std::string& sequence : sequences) {
-                std::string base = s.path;
-                if (const auto at = base.find("{sensor}"); at != std::string::npos) base.replace(at, 8, sensor);
-                const fs::path folder = sequence.empty() ? fs::path(base) : fs::path(base) / sequence;
-                if (!fs::is_directory(folder))
-                    r.fail(d["sequences"] ? d["sequences"] : d["path"], "no such sequence folder: " + folder.string());
-            }
-    }
+    if (check_paths && !s.synthetic)
+        for (const auto& f : s.folders())
+            if (!fs::is_directory(f.path)) r.fail(d["sequences"] ? d["sequences"] : d["path"], "no such sequence folder: " + f.path.string());
     return s;
 }
 
@@ -250,6 +241,19 @@ AlgorithmSpec read_algorithm(const YamlReader& r, const YAML::Node& a, const Plu
 }
 
 }  // namespace
+
+std::vector<DatasetSpec::Folder> DatasetSpec::folders() const {
+    std::vector<Folder> out;
+    const std::vector<std::string> all_sensors = sensors.empty() ? std::vector<std::string>{""} : sensors;
+    const std::vector<std::string> all_sequences = sequences.empty() ? std::vector<std::string>{""} : sequences;
+    for (const std::string& sequence : all_sequences)
+        for (const std::string& sensor : all_sensors) {
+            std::string base = path;
+            if (const auto at = base.find("{sensor}"); at != std::string::npos) base.replace(at, 8, sensor);
+            out.push_back({sequence, sensor, sequence.empty() ? fs::path(base) : fs::path(base) / sequence});
+        }
+    return out;
+}
 
 const std::vector<std::string>& known_metric_names() {
     static const std::vector<std::string> names{

@@ -47,6 +47,14 @@ struct DatasetSpec {
     ParamMap options;                    // reader options
     GroundTruthAccuracy gt_accuracy;
     std::string where;                   // file:line:col of the entry
+
+    // The folders on disk, one per (sequence, sensor), in that order: path with {sensor} filled in,
+    // plus the sequence's sub-folder. Not for synthetic datasets.
+    struct Folder {
+        std::string sequence, sensor;
+        std::filesystem::path path;
+    };
+    std::vector<Folder> folders() const;
 };
 
 struct AlgorithmSpec {
