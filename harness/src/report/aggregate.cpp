@@ -1,5 +1,7 @@
 #include "report/aggregate.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -108,6 +110,19 @@ std::optional<double> timing_mean(const RunGroup& group, const std::string& fiel
     }
     if (n == 0) return std::nullopt;
     return sum / static_cast<double>(n);
+}
+
+std::string accuracy_text(double sigma, const std::string& unit) {
+    if (sigma > 0) return fmt::format("{:g} {}", sigma, unit);
+    return sigma == 0 ? "exact" : "not known";
+}
+
+std::vector<std::pair<std::string, GroundTruthAccuracy>> dataset_accuracies(const std::vector<RunGroup>& groups) {
+    std::vector<std::pair<std::string, GroundTruthAccuracy>> out;
+    for (const RunGroup& g : groups)
+        if (std::none_of(out.begin(), out.end(), [&](const auto& d) { return d.first == g.dataset; }))
+            out.emplace_back(g.dataset, g.runs.front()->cell.gt_accuracy);
+    return out;
 }
 
 std::string sensor_title(const std::string& sensor) {

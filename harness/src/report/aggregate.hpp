@@ -39,6 +39,11 @@ std::optional<double> stage_mean_ms(const RunGroup& group, const std::string& st
 // A timing field of run.json ("mean_ms", "fps", "peak_rss_mb", "harness_overhead_pct" …) averaged over successful runs.
 std::optional<double> timing_mean(const RunGroup& group, const std::string& field);
 
+// A declared ground-truth accuracy: "0.01 m", "exact" (0), "not known" (negative).
+std::string accuracy_text(double sigma, const std::string& unit);
+// Each dataset once, in order, with its runs' ground-truth accuracy.
+std::vector<std::pair<std::string, GroundTruthAccuracy>> dataset_accuracies(const std::vector<RunGroup>& groups);
+
 // "Kinect v1" for kinect1, "Kinect v2" for kinect2, the name otherwise ("–" when empty).
 std::string sensor_title(const std::string& sensor);
 

@@ -191,14 +191,9 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     h += "<h2>Ground truth</h2>\n<p>Declared accuracy (1σ) of each data set's ground truth (Ceriani et al. 2009): a metric at or "
          "below it (‡) cannot be told from the ground truth's own error.</p>\n<table id=\"gt\"><thead><tr><th class=\"l\">dataset</th>"
          "<th>position [m]</th><th>rotation [°]</th></tr></thead><tbody>\n";
-    std::vector<std::string> seen;
-    for (const RunGroup& g : groups) {
-        if (std::find(seen.begin(), seen.end(), g.dataset) != seen.end()) continue;
-        seen.push_back(g.dataset);
-        const auto& acc = g.runs.front()->cell.gt_accuracy;
-        const auto show = [](double v) { return v > 0 ? fmt::format("{:g}", v) : v == 0 ? std::string("exact") : std::string("not known"); };
-        h += "<tr><td class=\"l\">" + html_escape(g.dataset) + "</td><td>" + show(acc.position_m) + "</td><td>" + show(acc.rotation_deg) + "</td></tr>\n";
-    }
+    for (const auto& [dataset, a] : dataset_accuracies(groups))
+        h += "<tr><td class=\"l\">" + html_escape(dataset) + "</td><td>" + accuracy_text(a.position_m, "") + "</td><td>" +
+             accuracy_text(a.rotation_deg, "") + "</td></tr>\n";
     h += "</tbody></table>\n";
     h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Overhead: "
          "the frame loop's wall time not spent in process().</p>\n" + timing_table(groups);

@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+
 namespace vobench {
 
 namespace {
@@ -85,7 +87,11 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
     md += "## Accuracy (layout of Table 5, Kraft et al. 2016)\n\n"
           "Mean ± std over repeats. † some repeats failed (see Failures); ‡ within the ground truth's declared accuracy.\n\n";
     md += accuracy_markdown(groups);
-    md += "## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n";
+    md += "Ground truth's declared accuracy (1σ; Ceriani et al. 2009):";
+    for (const auto& [dataset, a] : dataset_accuracies(groups))
+        md += fmt::format(" {}: {}, {};", md_escape(dataset), accuracy_text(a.position_m, "m"), accuracy_text(a.rotation_deg, "°"));
+    md.back() = '.';
+    md += "\n\n## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n";
     for (const std::string& entry : entries_of(groups)) {
         const auto stages = stages_of(groups, entry);
         md += fmt::format("### {}\n\n| sequence | sensor |", md_escape(entry));
