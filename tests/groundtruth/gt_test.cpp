@@ -3,13 +3,18 @@
 #include "groundtruth/gt_compare.hpp"
 #include "groundtruth/gt_fusion.hpp"
 #include "metrics/statistics.hpp"
+#include "metrics/trajectory_io.hpp"
+#include "test_support.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <random>
+#include <sstream>
 
 using namespace vobench;
 
@@ -152,4 +157,51 @@ TEST_CASE("gt fuse refuses bad input", "[gt]") {
     b.poses = a.poses;
     b.sigma_pos_m = 0;
     CHECK_THROWS_WITH(gt::fuse_ground_truth(a, b, {}), Catch::Contains("sigmas must be positive"));
+}
+
+TEST_CASE("vobench gt compare and gt fuse on files", "[gt]") {
+    test::TempDir dir;
+    metrics::Trajectory gt, val;
+    for (int k = 0; k < 100; ++k) {
+        metrics::StampedPose p = truth(0.1 * k);
+        p.p.z() += 0.05;
+        gt.push_back(p);
+    }
+    for (int k = 0; k < 10; ++k) val.push_back(truth(1.0 * k));
+    val.push_back(truth(50.0));  // outside the ground truth: not localised
+    metrics::write_tum(dir.path() / "gt.txt", gt);
+    metrics::write_tum(dir.path() / "val.txt", val);
+    std::string out;
+    REQUIRE(test::run_command(test::cli().string() + " gt compare --gt " + (dir.path() / "gt.txt").string() + " --validation " +
+                                  (dir.path() / "val.txt").string() + " --json",
+                              out) == 0);
+    const auto j = nlohmann::json::parse(out);
+    CHECK(j["localised"] == 10);
+    CHECK(j["validation_poses"] == 11);
+    CHECK(j["position_m"]["mean"].get<double>() == Approx(0.05).margin(1e-9));
+    REQUIRE(test::run_command(test::cli().string() + " gt compare --gt " + (dir.path() / "gt.txt").string() + " --validation " +
+                                  (dir.path() / "val.txt").string(),
+                              out) == 0);
+    CHECK_THAT(out, Catch::Contains("| 10/11 | 0.0500 |"));
+
+    metrics::write_tum(dir.path() / "a.txt", stream(0.1, 4, 6, 0.02, 1, 21));
+    metrics::write_tum(dir.path() / "b.txt", stream(0.15, 12, 14, 0.05, 2, 22));
+    const auto fused = dir.path() / "fused.txt";
+    REQUIRE(test::run_command(test::cli().string() + " gt fuse " + (dir.path() / "a.txt").string() + " " + (dir.path() / "b.txt").string() +
+                                  " --sigma-a 0.02,1 --sigma-b 0.05,2 --out " + fused.string() + " 2>&1",
+                              out) == 0);
+    const metrics::Trajectory f = metrics::read_trajectory(fused).poses;
+    CHECK(position_rmse(f) < position_rmse(metrics::read_trajectory(dir.path() / "a.txt").poses));
+    std::ifstream cov(fused.string() + ".cov");
+    std::string line;
+    std::getline(cov, line);  // header
+    std::getline(cov, line);
+    std::istringstream fields(line);
+    int count = 0;
+    for (double v; fields >> v;) ++count;
+    CHECK(count == 37);  // stamp + 6×6
+    CHECK(test::run_command(test::cli().string() + " gt fuse " + (dir.path() / "a.txt").string() + " " + (dir.path() / "b.txt").string() +
+                                " --sigma-a x --sigma-b 0.05 --out " + fused.string() + " 2>&1",
+                            out) != 0);
+    CHECK_THAT(out, Catch::Contains("--sigma-a"));
 }
