@@ -115,6 +115,9 @@ TEST_CASE("every fault becomes a failed row with its reason, and the sweep compl
         } else {
             CHECK(e["rank"].is_null());
         }
+        // The child's own peak resident set: the memory eater was stopped just above its 512 MB limit.
+        if (name == "memory") CHECK(run["timing"]["peak_rss_mb"].get<double>() >= 512);
+        if (name == "healthy") CHECK(run["timing"]["peak_rss_mb"].get<double>() < 256);
         if (name == "stdout_garbage") CHECK_THAT(slurp(out / "runs" / id / "child.log"), Contains("frame 3 FAILED"));
     }
     // The criterion failed_cells == 0 is reported per entry; it is required, so `run` says so.

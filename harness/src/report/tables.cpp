@@ -97,7 +97,7 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
         md += fmt::format("### {}\n\n| sequence | sensor |", md_escape(entry));
         for (const std::string& s : stages) md += " " + md_escape(s) + " |";
         md += " process() mean | median | p95 | max | fps | peak RSS [MB] | harness overhead [%] |\n|---|---|";
-        for (std::size_t k = 0; k < stages.size() + 8; ++k) md += "---:|";
+        for (std::size_t k = 0; k < stages.size() + 7; ++k) md += "---:|";
         md += "\n";
         for (const RunGroup& g : groups) {
             if (g.entry != entry) continue;

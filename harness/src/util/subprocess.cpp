@@ -10,7 +10,6 @@
 #include <spawn.h>
 #include <sstream>
 #include <stdexcept>
-#include <sys/resource.h>
 #include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
@@ -37,6 +36,23 @@ uint64_t resident_kb(pid_t pid) {
     if (!(in >> size >> resident)) return 0;
     return resident * static_cast<uint64_t>(::sysconf(_SC_PAGESIZE)) / 1024;
 }
+
+}  // namespace
+
+uint64_t peak_resident_kb(const std::string& pid) {
+    std::ifstream in("/proc/" + pid + "/status");
+    for (std::string key; in >> key;) {
+        if (key == "VmHWM:") {
+            uint64_t kb = 0;
+            in >> kb;
+            return kb;
+        }
+        in.ignore(1 << 12, '\n');
+    }
+    return 0;
+}
+
+namespace {
 
 void decode_status(int status, ChildResult& r) {
     if (WIFEXITED(status)) {
@@ -72,11 +88,11 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     result.memory_mb = limits.memory_mb;
     const auto deadline = start + std::chrono::seconds(limits.timeout_s);
     int status = 0;
-    rusage usage{};
     for (;;) {
-        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
+        const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) break;
-        if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("wait4: ") + std::strerror(errno));
+        if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
+        result.peak_rss_kb = std::max(result.peak_rss_kb, peak_resident_kb(std::to_string(pid)));
         if (std::chrono::steady_clock::now() >= deadline) {
             result.timed_out = true;
         } else if (limits.memory_mb > 0 && resident_kb(pid) > limits.memory_mb * 1024) {
@@ -84,14 +100,13 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         }
         if (result.timed_out || result.memory_exceeded) {
             ::kill(pid, SIGKILL);
-            while (::wait4(pid, &status, 0, &usage) < 0 && errno == EINTR) {
+            while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
             }
             break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     decode_status(status, result);
-    result.peak_rss_kb = static_cast<uint64_t>(usage.ru_maxrss);
     result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }

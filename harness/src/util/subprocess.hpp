@@ -2,8 +2,11 @@
 // a resident-memory limit, so that a plugin that crashes, aborts, exits, hangs or eats memory cannot
 // take vobench down.
 //
-// posix_spawn + wait4 rather than Boost.Process: wait4 gives each child's own peak RSS (rusage), which
-// the run records need and which RUSAGE_CHILDREN cannot give when several children run at once.
+// posix_spawn + waitpid rather than Boost.Process: one loop that reaps the child, enforces the timeout
+// and the memory limit, and samples the child's own high-water mark (/proc/<pid>/status VmHWM). Not
+// ru_maxrss: after a spawn, Linux carries the parent's peak into the child's ru_maxrss, so every child of
+// a large vobench would report the parent's size.
+
 #pragma once
 
 #include <cstdint>
@@ -25,7 +28,7 @@ struct ChildResult {
     int signal = 0;           // the signal that ended it, when it did not exit
     bool timed_out = false;   // killed by us after the timeout
     bool memory_exceeded = false;  // killed by us over the memory limit
-    uint64_t peak_rss_kb = 0; // the child's peak resident set (wait4's ru_maxrss)
+    uint64_t peak_rss_kb = 0; // the child's peak resident set (VmHWM, sampled with the memory check)
     double wall_s = 0;
     int timeout_s = 0;
     uint64_t memory_mb = 0;
@@ -34,6 +37,9 @@ struct ChildResult {
     // "exceeded the memory limit of 512 MB" ...
     std::string describe() const;
 };
+
+// The high-water resident set of a live process (VmHWM, KiB); 0 if unreadable. Pass "self" for this one.
+uint64_t peak_resident_kb(const std::string& pid);
 
 // Runs <this executable> args... under `limits`. Throws std::runtime_error if it cannot start.
 ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits);
