@@ -21,6 +21,19 @@ repeats: 2
 YAML
 "$vobench" -q run sweep.yaml --out straight -j 2 > /dev/null
 
+# Ctrl-C (SIGINT): exit 130, finished cells kept, the running ones not recorded as failures.
+"$vobench" -q run sweep.yaml --out killed -j 2 > interrupt.log 2>&1 &
+pid=$!
+for _ in $(seq 100); do [ "$(ls killed/runs 2> /dev/null | wc -l)" -ge 2 ] && break; sleep 0.05; done
+kill -INT "$pid"
+rc=0; wait "$pid" || rc=$?
+[ "$rc" -eq 130 ] || { echo "FAIL: SIGINT gave exit $rc, expected 130"; cat interrupt.log; exit 1; }
+grep -q "interrupted: .* continue with: .* --resume" interrupt.log || { cat interrupt.log; exit 1; }
+if grep -l '"status": "failed"' killed/runs/*/run.json 2> /dev/null; then echo "FAIL: an interrupted cell was recorded as failed"; exit 1; fi
+sleep 0.2
+if pgrep -f "cell-exec $PWD/killed" > /dev/null; then echo "FAIL: a cell process outlived Ctrl-C"; exit 1; fi
+echo "SIGINT: exit 130, $(ls killed/runs | wc -l) cells kept, none recorded as failed"
+
 # Kill after growing delays until a run gets through on its own.
 attempt=0
 for delay in 0.15 0.4 0.7 1.1 1.6 2.2 3 5 8 12 20; do

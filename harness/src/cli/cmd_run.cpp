@@ -92,6 +92,12 @@ void add_run_commands(CLI::App& app, int& exit_code) {
             spdlog::info("{}: {} cells, -j {}, output {}", config.file.string(), cells.size(), o.jobs, o.out.string());
             t = run_local(cells, o);
         }
+        if (t.interrupted) {
+            spdlog::warn("interrupted: {} cells finished and kept, the running ones discarded; continue with: vobench run {} --out {} --resume",
+                         t.ran, config_file, o.out.string());
+            exit_code = 130;
+            return;
+        }
         spdlog::info("sweep finished: {} cells run ({} failed), {} skipped, {} frames in {:.1f} s", t.ran, t.failed, t.skipped, t.frames, t.wall_s);
         const ReportResult r = write_report(o.out);
         print_report(r, o.out);

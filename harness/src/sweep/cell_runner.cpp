@@ -205,7 +205,7 @@ int exec_cell(const fs::path& work) {
 namespace {
 
 // Runs the cell's child unless `not_run_reason` is given, then turns whatever it left into runs/<id>/.
-CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason) {
+CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason, const std::atomic<bool>* cancel) {
     const fs::path work = out / "runs" / ".work" / cell.id;
     const fs::path final_dir = out / "runs" / cell.id;
     fs::remove_all(work);
@@ -221,8 +221,17 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
         limits.timeout_s = cell.limits.timeout_s;
         limits.memory_mb = cell.limits.memory_mb;
         limits.log = work / "child.log";
+        limits.cancel = cancel;
         child = run_self_limited({"cell-exec", work.string()}, limits);
         ran = true;
+        if (child.cancelled) {  // the user stopped the sweep: not a result, the cell stays to do
+            fs::remove_all(work);
+            CellOutcome o;
+            o.id = cell.id;
+            o.interrupted = true;
+            o.reason = "interrupted";
+            return o;
+        }
     }
     TrackResult frames = read_frames(work / "frames.jsonl");
     const nlohmann::json result = read_json_file(work / "result.json");
@@ -281,8 +290,10 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
 
 }  // namespace
 
-CellOutcome run_cell(const Cell& cell, const fs::path& out) { return finish_cell(cell, out, ""); }
+CellOutcome run_cell(const Cell& cell, const fs::path& out, const std::atomic<bool>* cancel) { return finish_cell(cell, out, "", cancel); }
 
-CellOutcome record_unrun_cell(const Cell& cell, const fs::path& out, const std::string& reason) { return finish_cell(cell, out, reason); }
+CellOutcome record_unrun_cell(const Cell& cell, const fs::path& out, const std::string& reason) {
+    return finish_cell(cell, out, reason, nullptr);
+}
 
 }  // namespace vobench

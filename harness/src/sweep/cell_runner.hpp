@@ -13,6 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
 #include <filesystem>
 #include <string>
 
@@ -24,11 +25,13 @@ struct CellOutcome {
     std::string reason;      // why it failed ("" when ok)
     uint64_t frames = 0;     // frames processed
     double wall_s = 0;
+    bool interrupted = false;  // stopped by the user: nothing was recorded, the cell is still to do
 };
 
 // Runs one cell and writes <out>/runs/<id>/. Never throws for anything the plugin or data does;
 // throws std::runtime_error only when the output folder cannot be written.
-CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out);
+// `cancel` (optional): when it becomes true the cell's child is killed and nothing is recorded.
+CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out, const std::atomic<bool>* cancel = nullptr);
 
 // The failed row of a cell that never ran (e.g. its Slurm array task was cancelled or timed out):
 // runs/<id>/ with run.json giving `reason`, written the same atomic way.

@@ -7,6 +7,7 @@
 #include <spdlog/spdlog.h>
 
 #include <atomic>
+#include <csignal>
 #include <chrono>
 #include <condition_variable>
 #include <cstdio>
@@ -56,6 +57,10 @@ public:
             spdlog::warn("FAILED {} — {}", what, o.reason);
         draw_locked(true);
     }
+    void stopped() {
+        std::lock_guard<std::mutex> lock(mutex_);
+        --running_;
+    }
     void end() {
         if (tty_) std::fputs("\n", stderr);
     }
@@ -84,6 +89,32 @@ private:
     int jobs_;
     bool tty_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
+};
+
+std::atomic<bool> g_interrupted{false};
+
+extern "C" void on_interrupt(int) { g_interrupted = true; }
+
+// SIGINT and SIGTERM set g_interrupted while it lives; the former handlers come back after.
+class InterruptGuard {
+public:
+    InterruptGuard() {
+        g_interrupted = false;
+        struct sigaction sa {};
+        sa.sa_handler = on_interrupt;
+        sigemptyset(&sa.sa_mask);
+        ::sigaction(SIGINT, &sa, &old_int_);
+        ::sigaction(SIGTERM, &sa, &old_term_);
+    }
+    ~InterruptGuard() {
+        ::sigaction(SIGINT, &old_int_, nullptr);
+        ::sigaction(SIGTERM, &old_term_, nullptr);
+    }
+    InterruptGuard(const InterruptGuard&) = delete;
+    InterruptGuard& operator=(const InterruptGuard&) = delete;
+
+private:
+    struct sigaction old_int_ {}, old_term_ {};
 };
 
 }  // namespace
@@ -142,19 +173,25 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
     fs::remove_all(options.out / "runs" / ".work");
     const auto start = std::chrono::steady_clock::now();
     Progress progress(todo.size(), options.jobs);
-    std::atomic<std::size_t> next{0}, failed{0};
+    const InterruptGuard interrupt_guard;
+    std::atomic<std::size_t> next{0}, failed{0}, ran{0};
     std::mutex error_mutex;
     std::string fatal;
     auto worker = [&] {
         for (std::size_t k; (k = next++) < todo.size();) {
             {
                 std::lock_guard<std::mutex> lock(error_mutex);
-                if (!fatal.empty()) return;
+                if (!fatal.empty() || g_interrupted) return;
             }
             progress.started();
             try {
-                const CellOutcome o = run_cell(todo[k], options.out);
+                const CellOutcome o = run_cell(todo[k], options.out, &g_interrupted);
+                if (o.interrupted) {
+                    progress.stopped();
+                    continue;
+                }
                 if (!o.ok) ++failed;
+                ++ran;
                 progress.finished(todo[k], o);
             } catch (const std::exception& e) {  // the output folder cannot be written: stop cleanly
                 std::lock_guard<std::mutex> lock(error_mutex);
@@ -167,7 +204,8 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
     for (std::thread& t : pool) t.join();
     progress.end();
     if (!fatal.empty()) throw std::runtime_error("the sweep stopped: " + fatal);
-    tally.ran = todo.size();
+    tally.ran = ran;
+    tally.interrupted = g_interrupted;
     tally.failed = failed;
     tally.frames = progress.frames();
     tally.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

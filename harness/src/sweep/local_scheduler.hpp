@@ -23,6 +23,7 @@ struct SweepTally {
     std::size_t cells = 0, skipped = 0, ran = 0, failed = 0;
     uint64_t frames = 0;
     double wall_s = 0;
+    bool interrupted = false;  // SIGINT/SIGTERM: running cells were stopped and not recorded
 };
 
 // Checks `out` against the options before anything runs: refuses to mix a new sweep into earlier
@@ -34,6 +35,8 @@ void prepare_output(const std::vector<Cell>& cells, const SweepOptions& options)
 // The cells to run (after --only and --resume).
 std::vector<Cell> pending_cells(const std::vector<Cell>& cells, const SweepOptions& options);
 
+// SIGINT or SIGTERM (Ctrl-C) stops the sweep: no new cell starts, running cells are killed and left
+// unrecorded (to be redone by --resume), finished ones are kept; the tally says `interrupted`.
 SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options);
 
 }  // namespace vobench

@@ -20,6 +20,7 @@ namespace vobench {
 namespace fs = std::filesystem;
 
 std::string ChildResult::describe() const {
+    if (cancelled) return "cancelled (killed)";
     if (timed_out) return "timed out after " + std::to_string(timeout_s) + " s (killed)";
     if (memory_exceeded) return "exceeded the memory limit of " + std::to_string(memory_mb) + " MB (killed)";
     if (exited) return "exited with code " + std::to_string(exit_code);
@@ -76,11 +77,16 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     const std::string log = limits.log.empty() ? "/dev/null" : limits.log.string();
     posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
+    posix_spawnattr_t attributes;
+    posix_spawnattr_init(&attributes);
+    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own process group (see ChildLimits::cancel)
+    posix_spawnattr_setpgroup(&attributes, 0);
     pid_t pid = 0;
     const auto start = std::chrono::steady_clock::now();
-    const int rc = search ? posix_spawnp(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ)
-                          : posix_spawn(&pid, exe.c_str(), &actions, nullptr, argv.data(), environ);
+    const int rc = search ? posix_spawnp(&pid, exe.c_str(), &actions, &attributes, argv.data(), environ)
+                          : posix_spawn(&pid, exe.c_str(), &actions, &attributes, argv.data(), environ);
     posix_spawn_file_actions_destroy(&actions);
+    posix_spawnattr_destroy(&attributes);
     if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
 
     ChildResult result;
@@ -93,12 +99,14 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         if (done == pid) break;
         if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
         result.peak_rss_kb = std::max(result.peak_rss_kb, peak_resident_kb(std::to_string(pid)));
-        if (std::chrono::steady_clock::now() >= deadline) {
+        if (limits.cancel && limits.cancel->load()) {
+            result.cancelled = true;
+        } else if (std::chrono::steady_clock::now() >= deadline) {
             result.timed_out = true;
         } else if (limits.memory_mb > 0 && resident_kb(pid) > limits.memory_mb * 1024) {
             result.memory_exceeded = true;
         }
-        if (result.timed_out || result.memory_exceeded) {
+        if (result.timed_out || result.memory_exceeded || result.cancelled) {
             ::kill(pid, SIGKILL);
             while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
             }

@@ -9,6 +9,7 @@
 
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -20,6 +21,9 @@ struct ChildLimits {
     int timeout_s = 600;               // wall clock; then SIGKILL
     uint64_t memory_mb = 0;            // resident set; 0: no limit. Checked every 5 ms; then SIGKILL
     std::filesystem::path log;         // stdout and stderr go here (a file, never a pipe that could fill)
+    // When this becomes true the child is killed (SIGKILL) and the result says `cancelled`: how Ctrl-C
+    // reaches cells, which run in their own process group so that the terminal's SIGINT does not.
+    const std::atomic<bool>* cancel = nullptr;
 };
 
 struct ChildResult {
@@ -28,6 +32,7 @@ struct ChildResult {
     int signal = 0;           // the signal that ended it, when it did not exit
     bool timed_out = false;   // killed by us after the timeout
     bool memory_exceeded = false;  // killed by us over the memory limit
+    bool cancelled = false;   // killed by us because ChildLimits::cancel became true
     uint64_t peak_rss_kb = 0; // the child's peak resident set (VmHWM, sampled with the memory check)
     double wall_s = 0;
     int timeout_s = 0;
