@@ -56,6 +56,20 @@ TEST_CASE("the shipped configurations are valid", "[config]") {
     CHECK(t5.datasets[0].sensors == std::vector<std::string>{"kinect1", "kinect2"});
 }
 
+TEST_CASE("paper_table5_sim.yaml names the eight real PUTK² marker trajectories", "[config]") {
+    VOBENCH_REQUIRE_DATA(gt_dir, "putk2-groundtruth");
+    ::setenv("VOBENCH_PUTK2_GT", gt_dir.c_str(), 1);
+    const SweepConfig c = load_sweep_config(std::filesystem::path(VOBENCH_SOURCE_DIR) / "configs" / "paper_table5_sim.yaml", registry());
+    ::unsetenv("VOBENCH_PUTK2_GT");
+    REQUIRE(c.datasets.size() == 1);
+    REQUIRE(c.datasets[0].synthetic);
+    CHECK(c.datasets[0].synthetic->trajectories.size() == 8);
+    CHECK(c.datasets[0].synthetic->trajectories[0] == (gt_dir / "trajectory2.txt").string());
+    CHECK(c.datasets[0].synthetic->names[0] == "seq1");
+    CHECK(c.datasets[0].synthetic->names[7] == "seq8");
+    CHECK(c.datasets[0].sensors == std::vector<std::string>{"kinect1", "kinect2"});
+}
+
 TEST_CASE("configuration errors name file, line and column", "[config]") {
     const std::string algo = "algorithms:\n  - {plugin: put_vo}\n";
     CHECK(error_of(kData + algo).empty());

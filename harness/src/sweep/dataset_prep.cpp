@@ -70,9 +70,10 @@ std::string signature_of(const fs::path& folder) {
 std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginRegistry& registry, bool render) {
     std::vector<SequenceRef> out;
     if (d.synthetic) {
-        for (const std::string& trajectory : d.synthetic->trajectories)
+        for (std::size_t k = 0; k < d.synthetic->trajectories.size(); ++k)
             for (const std::string& sensor : d.synthetic->sensors) {
-                const std::string name = synth::is_trajectory_family(trajectory) ? trajectory : fs::path(trajectory).stem().string();
+                const std::string& trajectory = d.synthetic->trajectories[k];
+                const std::string& name = d.synthetic->names[k];
                 try {
                     out.push_back({name, sensor, ensure_rendered(*d.synthetic, trajectory, sensor, render), "tum", d.options});
                 } catch (const std::exception& e) {

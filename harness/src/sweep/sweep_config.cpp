@@ -159,13 +159,28 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
             r.fail(syn, "a synthetic dataset takes its trajectories and sensors inside synthetic:, not path/sequences/sensors/reader");
         r.only_keys(syn, {"trajectories", "sensors", "frames", "seed", "cache"}, "synthetic");
         SyntheticSpec spec;
+        // Each item: a family or file, or {name: seq1, trajectory: FILE} to name the sequence.
         const YAML::Node trajectories = r.required(syn, "trajectories", "synthetic");
-        spec.trajectories = r.scalars(trajectories, "trajectories");
-        for (std::string& t : spec.trajectories) {
-            if (synth::is_trajectory_family(t)) continue;
-            t = expand_env(t);
-            if (check_paths && !fs::exists(t))
-                r.fail(trajectories, "trajectory '" + t + "' is neither explore1..4, speed1..4 nor an existing PUTK² marker file");
+        if (!trajectories.IsSequence() || trajectories.size() == 0) r.fail(trajectories, "trajectories must be a non-empty list");
+        for (const YAML::Node& item : trajectories) {
+            std::string t, name;
+            YAML::Node at = item;
+            if (item.IsMap()) {
+                r.only_keys(item, {"name", "trajectory"}, "a trajectory");
+                at.reset(r.required(item, "trajectory", "a trajectory"));
+                t = r.scalar<std::string>(at, "trajectory");
+                if (item["name"]) name = r.scalar<std::string>(item["name"], "name");
+            } else {
+                t = r.scalar<std::string>(item, "trajectory");
+            }
+            if (!synth::is_trajectory_family(t)) {
+                t = expand_env(t);
+                if (check_paths && !fs::exists(t))
+                    r.fail(at, "trajectory '" + t + "' is neither explore1..4, speed1..4 nor an existing PUTK² marker file");
+            }
+            if (name.empty()) name = synth::is_trajectory_family(t) ? t : fs::path(t).stem().string();
+            spec.trajectories.push_back(t);
+            spec.names.push_back(name);
         }
         if (syn["sensors"]) spec.sensors = r.scalars(syn["sensors"], "sensors");
         for (const std::string& sensor : spec.sensors)

@@ -24,6 +24,7 @@ namespace vobench {
 // Sequences the generator renders (once, cached) instead of a folder on disk.
 struct SyntheticSpec {
     std::vector<std::string> trajectories;        // families (explore1 …) or PUTK² marker files
+    std::vector<std::string> names;               // the sequence name of each (default: family or file stem)
     std::vector<std::string> sensors{"kinect1"};
     uint64_t frames = 50;
     uint64_t seed = 1;
