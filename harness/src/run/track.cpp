@@ -53,6 +53,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     const auto loop_start = std::chrono::steady_clock::now();
     for (uint64_t i = 0; i < count; ++i) {
         std::unique_ptr<OwnedFrame> owned;
+        const auto r0 = std::chrono::steady_clock::now();
         try {
             owned = frames.next();
         } catch (const std::exception& e) {  // a bad frame ends the run; what was tracked is kept
@@ -73,6 +74,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
             break;
         }
         FrameRecord rec;
+        rec.read_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t0 - r0).count();
         rec.index = i;
         rec.stamp = frame.timestamp;
         rec.process_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
@@ -124,13 +126,13 @@ void write_track_outputs(const TrackResult& result, const std::filesystem::path&
         for (const auto& [name, v] : f.counters)
             if (std::find(counters.begin(), counters.end(), name) == counters.end()) counters.push_back(name);
     }
-    std::string csv = "index,stamp,process_ms,status";
+    std::string csv = "index,stamp,process_ms,read_ms,status";
     for (const auto& s : stages) csv += ",stage_" + s + "_ms";
     for (const auto& c : counters) csv += ",count_" + c;
     csv += '\n';
     static const char* kStatus[] = {"ok", "lost", "failed"};
     for (const FrameRecord& f : result.frames) {
-        csv += fmt::format("{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6,
+        csv += fmt::format("{},{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6, static_cast<double>(f.read_ns) * 1e-6,
                            f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
         for (const auto& s : stages) {
             double ms = 0;

@@ -22,6 +22,7 @@ struct FrameRecord {
     uint64_t index = 0;
     double stamp = 0;
     int64_t process_ns = 0;
+    int64_t read_ns = 0;          // waiting for this frame (decoding it, when there is no prefetch thread)
     vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
     std::vector<std::pair<std::string, int64_t>> stages;
     std::vector<std::pair<std::string, double>> counters;
@@ -60,7 +61,7 @@ struct TrackResult {
 
 TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry);
 
-// trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, status, one column
+// trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, read_ms, status, one column
 // per stage in ms, one per counter) into `dir`, each written atomically.
 void write_track_outputs(const TrackResult& result, const std::filesystem::path& dir);
 
