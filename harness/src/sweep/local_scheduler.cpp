@@ -9,7 +9,6 @@
 #include <atomic>
 #include <csignal>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <mutex>
 #include <set>
@@ -47,7 +46,6 @@ public:
         ++done_;
         if (!o.ok) ++failed_;
         frames_ += o.frames;
-        cell_wall_ += o.wall_s;
         if (tty_) std::fputs("\r\033[K", stderr);
         const std::string what = fmt::format("{}/{}/{} {} [{}]", cell.dataset, cell.sequence, cell.sensor.empty() ? "-" : cell.sensor,
                                              cell.entry_label(), cell.id.substr(0, 8));
@@ -85,7 +83,6 @@ private:
     std::mutex mutex_;
     std::size_t total_, done_ = 0, failed_ = 0, running_ = 0;
     uint64_t frames_ = 0;
-    double cell_wall_ = 0;
     int jobs_;
     bool tty_;
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
