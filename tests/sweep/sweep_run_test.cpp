@@ -134,6 +134,12 @@ TEST_CASE("finished cells are kept: --resume skips them, a plain rerun refuses",
                              "algorithms:\n  - {plugin: constant_pose}\n  - {plugin: orb_matching}\n";
     const fs::path out = dir.path() / "out";
     std::string log;
+    // --only: a subset by wildcard on dataset/sequence/sensor/algorithm/id; --resume adds the rest.
+    REQUIRE(run_sweep(config, "--out " + out.string() + " --only '*/constant_pose/*'", log) == 0);
+    CHECK(json_of(out / "leaderboard.json")["entries"].size() == 1);
+    REQUIRE(run_sweep(config, "--out " + out.string() + " --resume", log) == 0);
+    CHECK_THAT(log, Contains("1 of 2 cells already finished or not selected; running 1"));
+    fs::remove_all(out);
     REQUIRE(run_sweep(config, "--out " + out.string(), log) == 0);
     const auto before = fs::last_write_time(out / "runs" / json_of(out / "cells.json")[0]["id"].get<std::string>() / "run.json");
     CHECK(run_sweep(config, "--out " + out.string(), log) != 0);
@@ -161,7 +167,7 @@ TEST_CASE("two cells at a time (-j 2) compute exactly what one at a time does", 
     const fs::path config = dir.path() / "s.yaml";
     std::ofstream(config) << "datasets:\n  - {name: a, reader: tum, path: " << tiny_sequence("kinect1", "speed2").string() << "}\n"
                           << "  - {name: b, reader: tum, path: " << tiny_sequence("kinect2", "speed3").string() << "}\n"
-                             "algorithms:\n  - {plugin: put_vo}\n  - {plugin: orb_matching}\nrepeats: 2\n";
+                             "algorithms:\n  - {plugin: put_vo}\n  - {plugin: orb_matching}\nrepeats: 2\nframes: 6\n";
     std::string log;
     REQUIRE(run_sweep(config, "--out " + (dir.path() / "j1").string() + " -j 1", log) == 0);
     REQUIRE(run_sweep(config, "--out " + (dir.path() / "j2").string() + " -j 2", log) == 0);
@@ -170,6 +176,7 @@ TEST_CASE("two cells at a time (-j 2) compute exactly what one at a time does", 
     CHECK(cells == json_of(dir.path() / "j2" / "cells.json"));
     for (const auto& c : cells) {
         const std::string id = c["id"];
+        CHECK(json_of(dir.path() / "j1" / "runs" / id / "run.json")["frames"] == 6);  // frames: 6 caps every sequence
         CHECK(slurp(dir.path() / "j1" / "runs" / id / "trajectory.txt") == slurp(dir.path() / "j2" / "runs" / id / "trajectory.txt"));
         CHECK(json_of(dir.path() / "j1" / "runs" / id / "run.json")["evaluation"] == json_of(dir.path() / "j2" / "runs" / id / "run.json")["evaluation"]);
     }
