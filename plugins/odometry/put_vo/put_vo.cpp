@@ -49,6 +49,7 @@ public:
                  {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
+                 {"lk_flow_prior", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "start each LK search at the feature's last image motion"},
                  {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
                   "forward-backward check: drop a track that does not return within this many px (0: off)"},
                  {"ransac_threshold", VOBENCH_PARAM_DOUBLE, "0.035", 0.001, 1, "", "RANSAC inlier distance, m"},
@@ -85,6 +86,7 @@ public:
         lk_window_ = cv::Size(w, w);
         lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
         lk_fb_threshold_ = p.get_double("lk_fb_threshold");
+        flow_prior_ = p.get_bool("lk_flow_prior");
         lk_criteria_ = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, static_cast<int>(p.get_int("lk_iterations")),
                                         p.get_double("lk_epsilon"));
         ransac_.inlier_threshold_m = p.get_double("ransac_threshold");
@@ -108,6 +110,7 @@ public:
         world_from_keyframe_ = Eigen::Isometry3d::Identity();
         world_from_current_ = Eigen::Isometry3d::Identity();
         frames_since_keyframe_ = 0;
+        median_flow_ = {0, 0};
     }
 
     vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) override {
@@ -146,6 +149,7 @@ private:
     struct Feature {
         cv::Point2f position;  // in the current frame (distorted pixels)
         float response;
+        cv::Point2f flow{0, 0};  // its image motion over the last frame: the next search starts there
     };
 
     std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels) const {
@@ -156,10 +160,16 @@ private:
         Host::Stage s(host(), "tracking");
         if (tracked_.empty()) return;
         std::vector<cv::Point2f> from, to;
-        for (const Feature& f : tracked_) from.push_back(f.position);
+        for (const Feature& f : tracked_) {
+            from.push_back(f.position);
+            to.push_back(f.position + (flow_prior_ ? f.flow : cv::Point2f(0, 0)));
+        }
         std::vector<uchar> ok;
         std::vector<float> err;
-        cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_);
+        // Constant image velocity: each search starts where the feature would be if it kept last
+        // frame's motion, so fast motion needs fewer pyramid levels to stay within reach.
+        cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_,
+                                 flow_prior_ ? cv::OPTFLOW_USE_INITIAL_FLOW : 0);
         // Forward-backward consistency (Kalal et al. 2010): a track that does not lead back to where
         // it started is a mismatch, whatever LK's own status says. The backward pass starts at the
         // original position and works on the base level only, with few iterations: it checks that
@@ -178,11 +188,23 @@ private:
             if (lk_fb_threshold_ > 0 && (!back_ok[i] || cv::norm(back[i] - from[i]) > lk_fb_threshold_)) continue;
             tracked_[kept] = tracked_[i];
             tracked_[kept].position = to[i];
+            tracked_[kept].flow = to[i] - from[i];
             keyframe_points_[kept] = keyframe_points_[i];
             ++kept;
         }
         tracked_.resize(kept);
         keyframe_points_.resize(kept);
+        // New features inherit the median motion of the tracked ones.
+        if (kept > 0) {
+            std::vector<float> fx, fy;
+            for (const Feature& f : tracked_) {
+                fx.push_back(f.flow.x);
+                fy.push_back(f.flow.y);
+            }
+            std::nth_element(fx.begin(), fx.begin() + fx.size() / 2, fx.end());
+            std::nth_element(fy.begin(), fy.begin() + fy.size() / 2, fy.end());
+            median_flow_ = {fx[fx.size() / 2], fy[fy.size() / 2]};
+        }
     }
 
     bool estimate(const cv::Mat& depth, double scale, Eigen::Isometry3d& keyframe_from_current) {
@@ -249,7 +271,7 @@ private:
                     const double dx = f.position.x - k.pt.x, dy = f.position.y - k.pt.y;
                     if (dx * dx + dy * dy < min_d2) { near = true; break; }
                 }
-                if (!near) added.push_back({k.pt, k.response});
+                if (!near) added.push_back({k.pt, k.response, median_flow_});
             }
         }
         std::vector<Eigen::Vector3d> added_points;
@@ -281,7 +303,8 @@ private:
     int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
-    bool estimate_every_frame_ = true;
+    bool estimate_every_frame_ = true, flow_prior_ = true;
+    cv::Point2f median_flow_{0, 0};
     cv::Size lk_window_{7, 7};
     cv::TermCriteria lk_criteria_;
     vobench::rigid::RansacOptions ransac_;
