@@ -198,8 +198,18 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Reading: "
          "ms per frame spent reading and decoding frames. Overhead: the rest of the frame loop's wall time.</p>\n" + timing_table(groups);
     h += "<h2>Figures</h2>\n";
-    for (const Figure& f : figures) {
-        if (!f.drawn) continue;
+    // The page stays loadable for large sweeps: summary figures (bars, RPE over time) first, then the
+    // per-cell trajectories, at most kMaxEmbedded in all; every figure is in figures/ regardless.
+    constexpr std::size_t kMaxEmbedded = 60;
+    std::vector<const Figure*> order;
+    for (const char* kind : {"bars", "rpe", "traj"})
+        for (const Figure& f : figures)
+            if (f.drawn && f.kind == kind) order.push_back(&f);
+    if (order.size() > kMaxEmbedded)
+        h += fmt::format("<p>{} of {} figures shown; all are in <code>figures/</code>.</p>\n", kMaxEmbedded, order.size());
+    if (order.size() > kMaxEmbedded) order.resize(kMaxEmbedded);
+    for (const Figure* fp : order) {
+        const Figure& f = *fp;
         h += "<figure><img alt=\"" + html_escape(f.title) + "\" src=\"data:image/png;base64," + base64(read_binary(figure_folder / (f.stem + ".png"))) +
              "\"><figcaption>" + html_escape(f.title) + " — <code>figures/" + html_escape(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
     }
