@@ -42,6 +42,11 @@ void require_frame_index(uint64_t index, std::size_t count) {
         throw Error(VOBENCH_OUT_OF_RANGE, "frame " + std::to_string(index) + " is past the end (" + std::to_string(count) + " frames)");
 }
 
+void declare_gt_accuracy(vobench_sequence_info& info, const std::filesystem::path& sequence) {
+    const bool rendered = std::filesystem::exists(sequence / "synth.json");
+    info.gt_position_sigma_m = info.gt_rotation_sigma_deg = rendered ? 0.0 : -1.0;
+}
+
 vobench_image image_of(const cv::Mat& m, vobench_pixel_format format) {
     return {sizeof(vobench_image), m.cols, m.rows, static_cast<int32_t>(m.step[0]), format, m.data};
 }

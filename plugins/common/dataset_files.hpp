@@ -24,6 +24,10 @@ void require_depth16(const cv::Mat& depth, const std::filesystem::path& path);
 // Throws VOBENCH_OUT_OF_RANGE "frame I is past the end (N frames)" unless index < count.
 void require_frame_index(uint64_t index, std::size_t count);
 
+// The ground truth's declared accuracy (API 2) for a reader whose data comes with no published figure:
+// exact (0) when vobench rendered the sequence (synth.json in `sequence`), else not known (-1).
+void declare_gt_accuracy(vobench_sequence_info& info, const std::filesystem::path& sequence);
+
 // The ABI view of a matrix; valid as long as `m` keeps its pixels.
 vobench_image image_of(const cv::Mat& m, vobench_pixel_format format);
 

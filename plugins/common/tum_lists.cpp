@@ -1,5 +1,7 @@
 #include "tum_lists.hpp"
 
+#include "text_lines.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -9,14 +11,7 @@ namespace vobench::tum {
 
 std::vector<ListEntry> parse_list(const std::string& text, const std::string& name) {
     std::vector<ListEntry> entries;
-    std::istringstream in(text);
-    std::string line;
-    std::size_t number = 0;
-    while (std::getline(in, line)) {
-        ++number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        const std::size_t first = line.find_first_not_of(" \t");
-        if (first == std::string::npos || line[first] == '#') continue;
+    for (const auto& [number, line] : vobench::text::data_lines(text)) {
         std::istringstream fields(line);
         std::string stamp_text, path;
         fields >> stamp_text >> path;

@@ -7,6 +7,8 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
+#include <sstream>
 #include <fcntl.h>
 #include <cstring>
 #include <spawn.h>
@@ -39,10 +41,13 @@ std::string script(const std::string& stem, const std::string& setup, const std:
         stem, setup, width, height, plot, width / 100.0, height / 100.0);
 }
 
+// Looked up on PATH, as posix_spawnp will.
 bool have_gnuplot() {
     static const bool found = [] {
-        for (const char* dir : {"/usr/bin", "/usr/local/bin", "/bin"})
-            if (::access((std::string(dir) + "/gnuplot").c_str(), X_OK) == 0) return true;
+        const char* path = std::getenv("PATH");
+        std::istringstream dirs(path ? path : "/usr/bin:/bin");
+        for (std::string dir; std::getline(dirs, dir, ':');)
+            if (!dir.empty() && ::access((dir + "/gnuplot").c_str(), X_OK) == 0) return true;
         return false;
     }();
     return found;

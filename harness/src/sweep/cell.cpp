@@ -5,6 +5,8 @@
 
 #include <fnmatch.h>
 
+#include <optional>
+
 namespace vobench {
 namespace fs = std::filesystem;
 
@@ -96,22 +98,23 @@ std::string cell_id(const Cell& c) {
 
 std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& registry, const fs::path& out, bool render) {
     const fs::path memo = out / ".cache" / "checksums.json";
+    // Each algorithm's binary, found and hashed once (not once per sequence).
+    std::vector<std::pair<std::string, std::string>> binaries;  // (file, hash) per algorithm
+    for (const AlgorithmSpec& a : config.algorithms) {
+        std::optional<fs::path> file;
+        if (a.load_error.empty()) file = registry.find(a.plugin, VOBENCH_KIND_ODOMETRY)->path();
+        else file = registry.locate(a.plugin);
+        binaries.emplace_back(file ? fs::absolute(*file).lexically_normal().string() : "", file ? file_hash(*file) : "");
+    }
     std::vector<Cell> cells;
     for (const DatasetSpec& d : config.datasets) {
         const PluginPtr reader = registry.find(d.reader, VOBENCH_KIND_DATASET);
         const std::string reader_hash = file_hash(reader->path());
         for (const SequenceRef& s : prepare_sequences(d, registry, render)) {
             const std::string checksum = fs::is_directory(s.path) ? dataset_checksum(s.path, memo) : "to-render";
-            for (const AlgorithmSpec& a : config.algorithms) {
-                std::string plugin_file, plugin_hash;
-                if (a.load_error.empty()) {
-                    const PluginPtr plugin = registry.find(a.plugin, VOBENCH_KIND_ODOMETRY);
-                    plugin_file = fs::absolute(plugin->path()).lexically_normal().string();
-                    plugin_hash = file_hash(plugin->path());
-                } else if (const auto located = registry.locate(a.plugin)) {
-                    plugin_file = fs::absolute(*located).lexically_normal().string();
-                    plugin_hash = file_hash(*located);
-                }
+            for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {
+                const AlgorithmSpec& a = config.algorithms[ai];
+                const auto& [plugin_file, plugin_hash] = binaries[ai];
                 for (const ParamMap& params : a.variants)
                     for (std::size_t r = 0; r < config.seeds.size(); ++r) {
                         Cell c;

@@ -1,26 +1,17 @@
 #include "icl_files.hpp"
 
+#include "text_lines.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 #include <stdexcept>
 
 namespace vobench::icl {
-namespace {
-
-bool skip(const std::string& line) {
-    const auto first = line.find_first_not_of(" \t\r");
-    return first == std::string::npos || line[first] == '#';
-}
-
-}  // namespace
 
 std::vector<Association> parse_associations(const std::string& text, const std::string& name) {
     std::vector<Association> out;
-    std::istringstream in(text);
-    std::string line;
-    for (std::size_t n = 1; std::getline(in, line); ++n) {
-        if (skip(line)) continue;
+    for (const auto& [n, line] : vobench::text::data_lines(text)) {
         std::istringstream fields(line);
         Association a;
         std::string extra;
@@ -34,10 +25,7 @@ std::vector<Association> parse_associations(const std::string& text, const std::
 }
 
 std::vector<double> parse_camera(const std::string& text, const std::string& name) {
-    std::istringstream in(text);
-    std::string line;
-    for (std::size_t n = 1; std::getline(in, line); ++n) {
-        if (skip(line)) continue;
+    for (const auto& [n, line] : vobench::text::data_lines(text)) {
         std::istringstream fields(line);
         std::vector<double> k;
         double v;

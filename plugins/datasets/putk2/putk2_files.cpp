@@ -1,5 +1,7 @@
 #include "putk2_files.hpp"
 
+#include "text_lines.hpp"
+
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -7,22 +9,6 @@
 
 namespace vobench::putk2 {
 namespace {
-
-// Non-comment lines with their numbers.
-std::vector<std::pair<std::size_t, std::string>> lines_of(const std::string& text) {
-    std::vector<std::pair<std::size_t, std::string>> out;
-    std::istringstream in(text);
-    std::string line;
-    std::size_t number = 0;
-    while (std::getline(in, line)) {
-        ++number;
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        const auto first = line.find_first_not_of(" \t");
-        if (first == std::string::npos || line[first] == '#') continue;
-        out.emplace_back(number, line);
-    }
-    return out;
-}
 
 std::vector<std::string> split(const std::string& line, const char* separators) {
     std::vector<std::string> fields;
@@ -47,7 +33,7 @@ double number(const std::string& field, const std::string& where) {
 
 std::vector<CameraCalibration> parse_cam_data(const std::string& text, const std::string& name) {
     std::vector<CameraCalibration> cameras;
-    for (const auto& [n, line] : lines_of(text)) {
+    for (const auto& [n, line] : vobench::text::data_lines(text)) {
         const std::string where = name + ":" + std::to_string(n) + ": ";
         const auto f = split(line, ", \t");
         if (f.size() != 13)
@@ -68,7 +54,7 @@ std::vector<CameraCalibration> parse_cam_data(const std::string& text, const std
 }
 
 DepthCamera parse_depth_camera(const std::string& text, const std::string& name) {
-    const auto lines = lines_of(text);
+    const auto lines = vobench::text::data_lines(text);
     if (lines.size() != 2) throw std::runtime_error(name + ": expected two lines, `fx fy cx cy` and `x y z qw qx qy qz`");
     DepthCamera d;
     const std::string w1 = name + ":" + std::to_string(lines[0].first) + ": ", w2 = name + ":" + std::to_string(lines[1].first) + ": ";
@@ -91,7 +77,7 @@ DepthCamera parse_depth_camera(const std::string& text, const std::string& name)
 
 std::vector<MatchedFrame> parse_matched(const std::string& text, const std::string& name) {
     std::vector<MatchedFrame> frames;
-    for (const auto& [n, line] : lines_of(text)) {
+    for (const auto& [n, line] : vobench::text::data_lines(text)) {
         const std::string where = name + ":" + std::to_string(n) + ": ";
         const auto f = split(line, " \t");
         if (f.size() != 3) throw std::runtime_error(where + "expected `frame rgb_file depth_file`");

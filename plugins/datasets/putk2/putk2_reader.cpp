@@ -93,10 +93,8 @@ public:
         info_.frame_count = frames_.size();
         info_.ground_truth = ground_truth_.empty() ? nullptr : ground_truth_.data();
         info_.gt_count = ground_truth_.size() / 8;
-        // The ceiling-camera system's error is not stated as one figure in the paper: not known, unless
-        // vobench rendered the sequence (synth.json), whose poses are exact.
-        const bool rendered = std::filesystem::exists(std::filesystem::path(path) / "synth.json");
-        info_.gt_position_sigma_m = info_.gt_rotation_sigma_deg = rendered ? 0.0 : -1.0;
+        // The ceiling-camera system's error is not stated as one figure in the paper.
+        vobench::files::declare_gt_accuracy(info_, path);
     }
 
     const vobench_sequence_info& describe() override {

@@ -114,10 +114,8 @@ public:
         info_.frame_count = pairs_.size();
         info_.ground_truth = ground_truth_.empty() ? nullptr : ground_truth_.data();
         info_.gt_count = ground_truth_.size() / 8;
-        // Motion capture's own error is not published per sequence: not known, unless vobench rendered
-        // the sequence (synth.json), whose poses are exact.
-        const bool rendered = std::filesystem::exists(std::filesystem::path(path) / "synth.json");
-        info_.gt_position_sigma_m = info_.gt_rotation_sigma_deg = rendered ? 0.0 : -1.0;
+        // Motion capture's own error is not published per sequence.
+        vobench::files::declare_gt_accuracy(info_, path);
     }
 
     const vobench_sequence_info& describe() override {
