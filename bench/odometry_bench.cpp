@@ -31,7 +31,7 @@ const PluginRegistry& registry() {
 }
 
 Sequence load(const fs::path& path, const ParamMap& options) {
-    DatasetInstance d(registry().find("tum", VOBENCH_KIND_DATASET));
+    DatasetInstance d(registry().load("tum", VOBENCH_KIND_DATASET));
     d.open(path.string(), options);
     Sequence s;
     s.camera = *d.info().camera;
@@ -74,7 +74,7 @@ void run_odometry(benchmark::State& state, const std::string& plugin, const std:
         state.SkipWithError("data absent");
         return;
     }
-    OdometryInstance odo(registry().find(plugin, VOBENCH_KIND_ODOMETRY));
+    OdometryInstance odo(registry().load(plugin, VOBENCH_KIND_ODOMETRY));
     odo.start(s.camera, {}, 1);
     std::size_t k = 0;
     vobench_pose pose{};
@@ -110,7 +110,7 @@ void run_synth(benchmark::State& state, const std::string& sensor) {
 // A reader alone: frames/s of open-once, read every frame (decode, rescale or register), 10 frames.
 void run_reader(benchmark::State& state, const std::string& reader, const std::string& sensor, const std::string& layout) {
     const fs::path dir = synthetic("reader-" + sensor + "-" + layout, sensor, layout, 10);
-    DatasetInstance d(registry().find(reader, VOBENCH_KIND_DATASET));
+    DatasetInstance d(registry().load(reader, VOBENCH_KIND_DATASET));
     d.open(dir.string(), {});
     uint64_t i = 0;
     for (auto _ : state) benchmark::DoNotOptimize(d.read(i++ % d.info().frame_count).depth->data);
@@ -120,7 +120,7 @@ void run_reader(benchmark::State& state, const std::string& reader, const std::s
 // The same frames from the decoded-frame cache (zstd) instead of the reader.
 void run_cache(benchmark::State& state, const std::string& sensor) {
     const fs::path dir = synthetic("reader-" + sensor + "-tum", sensor, "tum", 10);
-    DatasetInstance d(registry().find("tum", VOBENCH_KIND_DATASET));
+    DatasetInstance d(registry().load("tum", VOBENCH_KIND_DATASET));
     d.open(dir.string(), {});
     const FrameCache cache(fs::temp_directory_path() / ("vobench-bench-cache-" + sensor));
     for (uint64_t i = 0; i < d.info().frame_count; ++i) cache.store(i, d.read(i));

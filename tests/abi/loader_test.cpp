@@ -119,12 +119,13 @@ TEST_CASE("the registry finds plugins by name and reports refusals", "[abi][regi
     const PluginRegistry registry({VOBENCH_FAULT_PLUGIN_DIR, VOBENCH_PLUGIN_DIR});
     const PluginScan scan = registry.scan();
     std::vector<std::string> names;
-    for (const auto& p : scan.plugins) names.push_back(p->name());
+    for (const auto& p : scan.plugins) names.push_back(p.name);
     CHECK(std::find(names.begin(), names.end(), "counter") != names.end());
     CHECK(std::find(names.begin(), names.end(), "tum") != names.end());
     CHECK(std::find(names.begin(), names.end(), "constant_pose") != names.end());
     CHECK(scan.refusals.size() >= 6);  // the fault plugins
-    CHECK(registry.find("tum", VOBENCH_KIND_DATASET)->name() == "tum");
-    CHECK_THROWS_WITH(registry.find("tum", VOBENCH_KIND_ODOMETRY), Contains("is a dataset plugin, not a odometry plugin"));
-    CHECK_THROWS_WITH(registry.find("no_such_plugin"), Contains("no plugin named 'no_such_plugin'"));
+    CHECK(registry.describe("tum", VOBENCH_KIND_DATASET).name == "tum");
+    CHECK(registry.load("tum", VOBENCH_KIND_DATASET)->name() == "tum");
+    CHECK_THROWS_WITH(registry.describe("tum", VOBENCH_KIND_ODOMETRY), Contains("is a dataset plugin, not a odometry plugin"));
+    CHECK_THROWS_WITH(registry.describe("no_such_plugin"), Contains("no plugin named 'no_such_plugin'"));
 }

@@ -3,7 +3,11 @@
 #include "abi/host_context.hpp"
 #include "abi/instances.hpp"
 #include "abi/plugin_library.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
 #include "util/subprocess.hpp"
+
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -31,6 +35,9 @@ private:
 };
 
 bool nonempty(const char* s) { return s != nullptr && *s != '\0'; }
+
+// A plugin's message, safe to print: NULL is "(NULL)", invalid UTF-8 replaced.
+std::string message_of(const char* s) { return s == nullptr ? "(NULL)" : clean_text(s); }
 
 // A textured 160×120 frame with a slanted plane in front of the camera, so that any odometry has
 // something to chew on.
@@ -88,7 +95,7 @@ void check_odometry(const PluginPtr& plugin, Report& r) {
     vobench_params none{sizeof(vobench_params), 0, nullptr, nullptr};
     vobench_odometry_config config{sizeof(config), &camera, &none, 1};
     vobench_status s = api->start(h, &config);
-    r.check(s == VOBENCH_OK, "start with defaults", std::string("status ") + status_name(s) + ": " + api->last_error(h));
+    r.check(s == VOBENCH_OK, "start with defaults", std::string("status ") + status_name(s) + ": " + message_of(api->last_error(h)));
     if (s == VOBENCH_OK) {
         for (int k = 0; k < 3; ++k) {
             SyntheticFrame f(k, 2 * k);
@@ -198,29 +205,42 @@ int run_conformance(const ConformanceOptions& options, std::ostream& out) {
     else check_dataset(plugin, options, r);
     out << (r.failures() == 0 ? "PASS " : "FAIL ") << options.library.string() << " (" << r.failures() << " failures)"
         << std::endl;
+    if (!options.verdict_file.empty()) write_file_atomic(options.verdict_file, r.failures() == 0 ? "0" : "1");
     return r.failures() == 0 ? 0 : 1;
 }
 
 int check_in_child(const ConformanceOptions& options, std::ostream& out) {
-    std::vector<std::string> args = {"plugins", "check", "--in-process", options.library.string()};
+    const std::filesystem::path verdict = std::filesystem::temp_directory_path() /
+                                          ("vobench-check-" + std::to_string(::getpid()) + "-" + file_stem(options.library.string()));
+    std::error_code ec;
+    std::filesystem::remove(verdict, ec);
+    std::vector<std::string> args = {"plugins", "check", "--in-process", options.library.string(), "--verdict", verdict.string()};
     if (options.dataset_path) {
         args.push_back("--dataset-path");
         args.push_back(*options.dataset_path);
     }
     const ChildResult child = run_self(args, options.timeout_s);
-    out << child.output;
-    if (child.exited && (child.exit_code == 0 || child.exit_code == 1)) return child.exit_code;
+    std::string written;
+    try {
+        written = read_file(verdict);
+    } catch (const std::exception&) {
+        // no verdict: the check did not reach its end
+    }
+    std::filesystem::remove(verdict, ec);
+    out << clean_text(child.output, true);
+    if (child.exited && (child.exit_code == 0 || child.exit_code == 1) && written == std::to_string(child.exit_code)) return child.exit_code;
     // The last step line the child printed is where the plugin was.
     std::string last;
     std::size_t pos = 0;
     while (pos < child.output.size()) {
         std::size_t end = child.output.find('\n', pos);
         if (end == std::string::npos) end = child.output.size();
-        if (end > pos) last = child.output.substr(pos, end - pos);
+        if (end > pos && child.output.compare(pos, 2, "..") == 0) last = child.output.substr(pos, end - pos);
         pos = end + 1;
     }
-    out << "FAIL  " << options.library.string() << ": " << child.describe() << (last.empty() ? "" : " — last step: " + last.substr(6))
-        << std::endl;
+    const std::string how = child.exited && written.empty() ? "the process ended (" + child.describe() + ") inside a plugin call" : child.describe();
+    out << "FAIL  " << options.library.string() << ": " << how << (last.size() > 6 ? " — last step: " + clean_text(last.substr(6)) : "") << "\n"
+        << "FAIL " << options.library.string() << std::endl;
     return 1;
 }
 

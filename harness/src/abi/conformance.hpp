@@ -17,13 +17,16 @@ struct ConformanceOptions {
     std::filesystem::path library;
     std::optional<std::string> dataset_path;  // a sequence to open and read (dataset plugins)
     int timeout_s = 120;                      // child process only
+    std::filesystem::path verdict_file;       // in-process: "0" or "1" written here after the last step
 };
 
 // In this process. Returns 0 when every step passes, 1 otherwise.
 int run_conformance(const ConformanceOptions& options, std::ostream& out);
 
-// In a child process (`vobench plugins check --in-process ...`): a crash, an abort or a hang of the
-// plugin becomes a failed report. Returns the exit status for the CLI: 0 pass, 1 fail.
+// In a child process (`vobench plugins check --in-process ...`): a crash, an abort, a hang, or an
+// exit() of any code inside a plugin call becomes a failed report (the child's verdict file, written
+// after the last step, is what says the check ran to its end). Ends with one line "PASS …" or
+// "FAIL …". Returns the exit status for the CLI: 0 pass, 1 fail.
 int check_in_child(const ConformanceOptions& options, std::ostream& out);
 
 }  // namespace vobench

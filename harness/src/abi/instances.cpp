@@ -2,6 +2,8 @@
 
 #include <vobench/plugin.hpp>
 
+#include <cmath>
+
 namespace vobench {
 
 const char* status_name(vobench_status status) {
@@ -18,20 +20,20 @@ const char* status_name(vobench_status status) {
     }
 }
 
-void validate_params(const PluginLibrary& plugin, const ParamMap& params) {
+void validate_params(const PluginInfo& plugin, const ParamMap& params) {
     for (const auto& [key, value] : params) {
         const sdk::Param* found = nullptr;
-        for (const sdk::Param& p : plugin.params())
+        for (const sdk::Param& p : plugin.params)
             if (p.name == key) found = &p;
         if (found == nullptr) {
             std::string known;
-            for (const sdk::Param& p : plugin.params()) known += (known.empty() ? "" : ", ") + p.name;
-            throw std::invalid_argument("plugin '" + plugin.name() + "' has no parameter '" + key + "' (it has: " +
+            for (const sdk::Param& p : plugin.params) known += (known.empty() ? "" : ", ") + p.name;
+            throw std::invalid_argument("plugin '" + plugin.name + "' has no parameter '" + key + "' (it has: " +
                                         (known.empty() ? "none" : known) + ")");
         }
         const std::string why = sdk::check_param_value(*found, value);
         if (!why.empty())
-            throw std::invalid_argument("plugin '" + plugin.name() + "', parameter '" + key + "': " + why);
+            throw std::invalid_argument("plugin '" + plugin.name + "', parameter '" + key + "': " + why);
     }
 }
 
@@ -52,6 +54,38 @@ ParamView::ParamView(const ParamMap& params) {
 
 // ----- datasets ----------------------------------------------------------------------------------
 
+namespace {
+
+int bytes_per_pixel(vobench_pixel_format f) {
+    switch (f) {
+    case VOBENCH_PIXEL_RGB8: case VOBENCH_PIXEL_BGR8: return 3;
+    case VOBENCH_PIXEL_GRAY8: return 1;
+    case VOBENCH_PIXEL_DEPTH_U16: return 2;
+    case VOBENCH_PIXEL_DEPTH_F32: return 4;
+    default: return 0;
+    }
+}
+
+std::string image_problem(const vobench_image& im, const vobench_camera& camera, const char* what, bool depth) {
+    const int bpp = bytes_per_pixel(im.format);
+    const bool depth_format = im.format == VOBENCH_PIXEL_DEPTH_U16 || im.format == VOBENCH_PIXEL_DEPTH_F32;
+    if (bpp == 0 || depth_format != depth) return std::string(what) + " has pixel format " + std::to_string(im.format);
+    if (im.width != camera.width || im.height != camera.height)
+        return std::string(what) + " is " + std::to_string(im.width) + "x" + std::to_string(im.height) + ", the camera " +
+               std::to_string(camera.width) + "x" + std::to_string(camera.height);
+    if (im.data == nullptr || im.stride_bytes < im.width * bpp) return std::string(what) + " has no data or a stride below width x pixel size";
+    return "";
+}
+
+}  // namespace
+
+std::string frame_problem(const vobench_frame& frame, const vobench_camera& camera) {
+    if (std::string why = image_problem(*frame.color, camera, "colour image", false); !why.empty()) return why;
+    if (std::string why = image_problem(*frame.depth, camera, "depth image", true); !why.empty()) return why;
+    if (!(std::isfinite(frame.depth_scale) && frame.depth_scale > 0)) return "depth_scale is not a positive number";
+    return "";
+}
+
 DatasetInstance::DatasetInstance(PluginPtr plugin)
     : plugin_(std::move(plugin)), api_(plugin_->descriptor().dataset), host_(std::make_unique<HostContext>(plugin_->name())) {
     handle_ = api_->create(host_->services());
@@ -68,12 +102,20 @@ void DatasetInstance::fail(const char* call, vobench_status status) const {
 }
 
 void DatasetInstance::open(const std::string& path, const ParamMap& options) {
-    validate_params(*plugin_, options);
+    validate_params(plugin_->info(), options);
     const ParamView view(options);
     if (vobench_status s = api_->open(handle_, path.c_str(), view.get()); s != VOBENCH_OK) fail("open", s);
     if (vobench_status s = api_->describe(handle_, &info_); s != VOBENCH_OK) fail("describe", s);
     if (info_ == nullptr || info_->camera == nullptr)
         throw PluginCallError("plugin '" + plugin_->name() + "': describe() gave no sequence info or camera", VOBENCH_ERROR);
+    const vobench_camera& c = *info_->camera;
+    if (c.width <= 0 || c.height <= 0 || c.width > 16384 || c.height > 16384 || !(std::isfinite(c.fx) && c.fx > 0) ||
+        !(std::isfinite(c.fy) && c.fy != 0) || !std::isfinite(c.cx) || !std::isfinite(c.cy))
+        throw PluginCallError("plugin '" + plugin_->name() + "': describe() gave an unusable camera (" + std::to_string(c.width) + "x" +
+                                  std::to_string(c.height) + ", fx " + std::to_string(c.fx) + ")",
+                              VOBENCH_ERROR);
+    if (info_->gt_count > 0 && info_->ground_truth == nullptr)
+        throw PluginCallError("plugin '" + plugin_->name() + "': describe() declares ground truth but gives no array", VOBENCH_ERROR);
 }
 
 const vobench_frame& DatasetInstance::read(uint64_t index) {
@@ -82,6 +124,12 @@ const vobench_frame& DatasetInstance::read(uint64_t index) {
     if (frame == nullptr || frame->color == nullptr || frame->depth == nullptr)
         throw PluginCallError("plugin '" + plugin_->name() + "': read_frame(" + std::to_string(index) +
                                   ") returned an incomplete frame",
+                              VOBENCH_ERROR);
+    // An odometry plugin reads these images by their sizes and strides: a reader that lies about them
+    // must fail here, named, not make the plugin read past a buffer and be blamed for the crash.
+    const std::string why = frame_problem(*frame, *info_->camera);
+    if (!why.empty())
+        throw PluginCallError("plugin '" + plugin_->name() + "': read_frame(" + std::to_string(index) + ") returned a bad frame: " + why,
                               VOBENCH_ERROR);
     return *frame;
 }
@@ -102,7 +150,7 @@ std::string OdometryInstance::last_error() const {
 }
 
 void OdometryInstance::start(const vobench_camera& camera, const ParamMap& params, uint64_t seed) {
-    validate_params(*plugin_, params);
+    validate_params(plugin_->info(), params);
     const ParamView view(params);
     vobench_odometry_config config{};
     config.struct_size = sizeof(config);

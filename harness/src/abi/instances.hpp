@@ -29,7 +29,7 @@ using ParamMap = std::map<std::string, std::string>;
 
 // Checks names, types and ranges against the plugin's table; throws std::invalid_argument naming the
 // plugin and parameter.
-void validate_params(const PluginLibrary& plugin, const ParamMap& params);
+void validate_params(const PluginInfo& plugin, const ParamMap& params);
 
 // Keeps strings alive and presents them as vobench_params.
 class ParamView {
@@ -44,6 +44,9 @@ private:
 };
 
 const char* status_name(vobench_status status);
+
+// Why a reader's frame does not match its camera (sizes, pixel formats, strides, depth scale), or "".
+std::string frame_problem(const vobench_frame& frame, const vobench_camera& camera);
 
 class DatasetInstance {
 public:

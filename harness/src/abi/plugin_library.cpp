@@ -1,7 +1,10 @@
 #include "abi/plugin_library.hpp"
 
+#include "util/escape.hpp"
+
 
 #include <cctype>
+#include <cmath>
 #include <cstddef>
 #include <set>
 
@@ -20,6 +23,12 @@ bool is_identifier(const char* s) {
         if (!(std::islower(static_cast<unsigned char>(*s)) || std::isdigit(static_cast<unsigned char>(*s)) || *s == '_'))
             return false;
     return true;
+}
+
+// One parameter-table row as SDK values; the texts cleaned (they came from plugin code).
+sdk::Param param_of(const vobench_param_desc& p) {
+    return {p.name, p.type, clean_text(p.default_value), p.min_value, p.max_value, p.choices ? clean_text(p.choices) : "",
+            p.help ? clean_text(p.help) : ""};
 }
 
 std::string check_params(const vobench_plugin_descriptor* d) {
@@ -42,8 +51,7 @@ std::string check_params(const vobench_plugin_descriptor* d) {
             return std::string("parameter '") + p->name + "': enum without choices";
         if ((p->type == VOBENCH_PARAM_INT || p->type == VOBENCH_PARAM_DOUBLE) && !(p->min_value <= p->max_value))
             return std::string("parameter '") + p->name + "': min_value > max_value";
-        sdk::Param sp{p->name, p->type, p->default_value, p->min_value, p->max_value,
-                      p->choices ? p->choices : "", p->help ? p->help : ""};
+        const sdk::Param sp = param_of(*p);
         const std::string why = sdk::check_param_value(sp, sp.default_value);
         if (!why.empty()) return std::string("parameter '") + p->name + "': default " + why;
     }
@@ -51,6 +59,42 @@ std::string check_params(const vobench_plugin_descriptor* d) {
 }
 
 }  // namespace
+
+namespace {
+// JSON has no infinity: an unbounded range travels as the string "inf" / "-inf".
+nlohmann::json bound_to_json(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(v > 0 ? "inf" : v < 0 ? "-inf" : "nan"); }
+double bound_from_json(const nlohmann::json& v) {
+    if (v.is_number()) return v.get<double>();
+    const std::string s = v.get<std::string>();
+    return s == "inf" ? HUGE_VAL : s == "-inf" ? -HUGE_VAL : std::nan("");
+}
+}  // namespace
+
+nlohmann::json plugin_info_to_json(const PluginInfo& i) {
+    nlohmann::json params = nlohmann::json::array();
+    for (const sdk::Param& p : i.params)
+        params.push_back({{"name", p.name}, {"type", p.type}, {"default", p.default_value}, {"min", bound_to_json(p.min_value)}, {"max", bound_to_json(p.max_value)},
+                          {"choices", p.choices}, {"help", p.help}});
+    return {{"path", i.path.string()}, {"name", i.name}, {"version", i.version}, {"description", i.description}, {"license", i.license},
+            {"url", i.url}, {"kind", i.kind}, {"abi_version", i.abi_version}, {"api_version", i.api_version}, {"params", params}};
+}
+
+PluginInfo plugin_info_from_json(const nlohmann::json& j) {
+    PluginInfo i;
+    i.path = j.at("path").get<std::string>();
+    i.name = j.at("name");
+    i.version = j.at("version");
+    i.description = j.at("description");
+    i.license = j.at("license");
+    i.url = j.at("url");
+    i.kind = j.at("kind");
+    i.abi_version = j.at("abi_version");
+    i.api_version = j.at("api_version");
+    for (const auto& p : j.at("params"))
+        i.params.push_back({p.at("name"), p.at("type"), p.at("default"), bound_from_json(p.at("min")), bound_from_json(p.at("max")), p.at("choices"),
+                            p.at("help")});
+    return i;
+}
 
 const char* kind_name(vobench_plugin_kind kind) {
     switch (kind) {
@@ -125,11 +169,17 @@ std::shared_ptr<const PluginLibrary> PluginLibrary::load(const std::filesystem::
     if (std::string why = validate_descriptor(plugin->descriptor_); !why.empty()) throw PluginLoadError(where + why);
 
     const vobench_plugin_descriptor& d = *plugin->descriptor_;
-    for (uint32_t i = 0; i < d.param_count; ++i) {
-        const vobench_param_desc* p = VOBENCH_ARRAY_AT(d.params, vobench_param_desc, i);
-        plugin->params_.push_back({p->name, p->type, p->default_value, p->min_value, p->max_value,
-                                   p->choices ? p->choices : "", p->help ? p->help : ""});
-    }
+    PluginInfo& info = plugin->info_;
+    info.path = path;
+    info.name = d.name;
+    info.version = clean_text(d.version);
+    info.description = clean_text(d.description, true);
+    info.license = clean_text(d.license);
+    info.url = d.url ? clean_text(d.url) : "";
+    info.kind = d.kind;
+    info.abi_version = d.abi_version;
+    info.api_version = d.api_version;
+    for (uint32_t i = 0; i < d.param_count; ++i) info.params.push_back(param_of(*VOBENCH_ARRAY_AT(d.params, vobench_param_desc, i)));
     return plugin;
 }
 

@@ -10,6 +10,7 @@
 #include <vobench/vobench_plugin.h>
 
 #include <boost/dll/shared_library.hpp>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <memory>
@@ -31,6 +32,20 @@ std::string validate_descriptor(const vobench_plugin_descriptor* d);
 // "dataset" / "odometry" / "unknown".
 const char* kind_name(vobench_plugin_kind kind);
 
+// A descriptor copied out of a library: plain values that stay valid after the library is gone, and
+// that a probe in a child process can hand back (abi/plugin_probe.hpp). Every string is valid UTF-8
+// (invalid bytes replaced): it came from plugin code.
+struct PluginInfo {
+    std::filesystem::path path;
+    std::string name, version, description, license, url;
+    vobench_plugin_kind kind = 0;
+    uint32_t abi_version = 0, api_version = 0;
+    std::vector<sdk::Param> params;
+};
+
+nlohmann::json plugin_info_to_json(const PluginInfo& info);
+PluginInfo plugin_info_from_json(const nlohmann::json& j);  // throws nlohmann::json::exception when malformed
+
 class PluginLibrary {
 public:
     // Loads and validates; throws PluginLoadError("<path>: <reason>").
@@ -38,10 +53,11 @@ public:
 
     const vobench_plugin_descriptor& descriptor() const { return *descriptor_; }
     const std::filesystem::path& path() const { return path_; }
-    std::string name() const { return descriptor_->name; }
+    const PluginInfo& info() const { return info_; }
+    const std::string& name() const { return info_.name; }
     vobench_plugin_kind kind() const { return descriptor_->kind; }
     // The parameter table as SDK values (used for validation and `plugins info`).
-    const std::vector<sdk::Param>& params() const { return params_; }
+    const std::vector<sdk::Param>& params() const { return info_.params; }
     // The entry function, for the conformance check.
     vobench_plugin_entry_fn entry() const { return entry_; }
 
@@ -51,7 +67,7 @@ private:
     std::filesystem::path path_;
     vobench_plugin_entry_fn entry_ = nullptr;
     const vobench_plugin_descriptor* descriptor_ = nullptr;
-    std::vector<sdk::Param> params_;
+    PluginInfo info_;
 };
 
 using PluginPtr = std::shared_ptr<const PluginLibrary>;

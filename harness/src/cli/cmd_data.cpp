@@ -1,6 +1,7 @@
 // vobench data info — describe a sequence through its reader plugin.
 #include "cli/commands.hpp"
 #include "run/track.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -24,7 +25,7 @@ void add_data_command(CLI::App& app, int& exit_code) {
     info->callback([&exit_code] {
         ParamMap opts = parse_key_values(options, "--option");
         if (!sensor.empty()) opts["sensor"] = sensor;
-        DatasetInstance d(PluginRegistry().find(dataset, VOBENCH_KIND_DATASET));
+        DatasetInstance d(PluginRegistry().load(dataset, VOBENCH_KIND_DATASET));
         d.open(path, opts);
         const vobench_sequence_info& s = d.info();
         const metrics::Trajectory gt = ground_truth_of(s);
@@ -46,7 +47,7 @@ void add_data_command(CLI::App& app, int& exit_code) {
                          {"gt_poses", gt.size()},
                          {"duration_s", duration}};
         if (json) {
-            std::cout << j.dump(2) << std::endl;
+            std::cout << json_text(j) << std::endl;
         } else {
             std::cout << fmt::format("{} ({}): {} frames {}x{} (depth sensor {}x{}), fx {} fy {} cx {} cy {}, depth scale {}, "
                                      "{} ground-truth poses, {:.3f} s\n",

@@ -3,6 +3,7 @@
 #include "cli/protocol_options.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "metrics/trajectory_stats.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -49,9 +50,9 @@ void add_eval_command(CLI::App& app, int& exit_code) {
         const metrics::Trajectory e = load(est, est_format, est_cim, tum);
         const metrics::Evaluation ev = metrics::evaluate(g, e, p);
         if (json) {
-            std::cout << metrics::evaluation_json(ev).dump(2) << std::endl;
+            std::cout << json_text(metrics::evaluation_json(ev)) << std::endl;
         } else {
-            std::cout << "protocol: " << metrics::protocol_json(p).dump() << "\n";
+            std::cout << "protocol: " << json_text(metrics::protocol_json(p), -1) << "\n";
             if (ev.ate) print_stats("ATE (m)", ev.ate->stats, "m");
             if (ev.rpe) {
                 print_stats("RPE translation (m)", ev.rpe->trans, "m");
@@ -80,7 +81,7 @@ void add_traj_command(CLI::App& app, int& exit_code) {
             metrics::compute_trajectory_stats(t, rate > 0 ? std::optional<double>(rate) : std::nullopt);
         if (json) {
             nlohmann::json j = s;
-            std::cout << j.dump(2) << std::endl;
+            std::cout << json_text(j) << std::endl;
         } else {
             std::cout << fmt::format("poses {}  duration {:.4f} s  length {:.4f} m  mean velocity {:.4f} m/s  rotation {:.2f} deg\n",
                                      s.poses, s.duration_s, s.length_m, s.mean_velocity_mps, s.rotation_deg);

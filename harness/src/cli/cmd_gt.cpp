@@ -4,6 +4,7 @@
 #include "groundtruth/gt_compare.hpp"
 #include "groundtruth/gt_fusion.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -60,7 +61,7 @@ void add_gt_commands(CLI::App& app, int& exit_code) {
         o.max_dt = max_dt;
         o.align = align;
         const gt::CompareResult r = gt::compare_ground_truth(load(gt_file, gt_format), load(validation, val_format), o);
-        if (json) std::cout << gt::compare_json(r, o).dump(2) << "\n";
+        if (json) std::cout << json_text(gt::compare_json(r, o)) << "\n";
         else std::cout << gt::compare_table(r);
         exit_code = 0;
     });

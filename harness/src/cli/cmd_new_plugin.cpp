@@ -2,6 +2,7 @@
 #include "cli/commands.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "plugin_template.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -53,9 +54,9 @@ void add_new_plugin_command(CLI::App& app, int& exit_code) {
         std::string cmake = plugin_template::kCMakeLists;
         cmake = replace_all(cmake, "vobench_template_plugin", name);
         cmake = replace_all(cmake, "vobench_add_plugin(template SOURCES template_vo.cpp)", "vobench_add_plugin(" + name + " SOURCES " + name + ".cpp)");
-        metrics::write_file_atomic(out / (name + ".cpp"), source);
-        metrics::write_file_atomic(out / "CMakeLists.txt", cmake);
-        metrics::write_file_atomic(out / "README.md",
+        write_file_atomic(out / (name + ".cpp"), source);
+        write_file_atomic(out / "CMakeLists.txt", cmake);
+        write_file_atomic(out / "README.md",
                                    fmt::format("# {0}\n\nA vobench odometry plugin. Build against an installed vobench SDK:\n\n"
                                                "```sh\ncmake -S . -B build -DCMAKE_PREFIX_PATH=/path/to/vobench/prefix\ncmake --build build\n"
                                                "vobench plugins check build/vobench_{0}.so\n"

@@ -1,7 +1,11 @@
 // vobench plugins list | info | check
 #include "abi/conformance.hpp"
+#include "abi/plugin_probe.hpp"
 #include "abi/plugin_registry.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
 #include "cli/commands.hpp"
+#include "util/files.hpp"
 
 #include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
@@ -22,20 +26,21 @@ const char* type_name(vobench_param_type t) {
     }
 }
 
-nlohmann::json plugin_json(const PluginLibrary& p, bool with_params) {
-    const vobench_plugin_descriptor& d = p.descriptor();
-    nlohmann::json j{{"name", d.name},
-                     {"kind", kind_name(d.kind)},
-                     {"version", d.version},
-                     {"abi", d.abi_version},
-                     {"api", d.api_version},
-                     {"path", std::filesystem::weakly_canonical(p.path()).string()}};
+nlohmann::json plugin_json(const PluginInfo& p, bool with_params) {
+    std::error_code ec;
+    const std::filesystem::path canonical = std::filesystem::weakly_canonical(p.path, ec);
+    nlohmann::json j{{"name", p.name},
+                     {"kind", kind_name(p.kind)},
+                     {"version", p.version},
+                     {"abi", p.abi_version},
+                     {"api", p.api_version},
+                     {"path", (ec ? p.path : canonical).string()}};
     if (with_params) {
-        j["description"] = d.description;
-        j["license"] = d.license;
-        j["url"] = d.url ? d.url : "";
+        j["description"] = p.description;
+        j["license"] = p.license;
+        j["url"] = p.url;
         j["params"] = nlohmann::json::array();
-        for (const sdk::Param& param : p.params()) {
+        for (const sdk::Param& param : p.params) {
             nlohmann::json pj{{"name", param.name}, {"type", type_name(param.type)}, {"default", param.default_value},
                               {"help", param.help}};
             if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE)
@@ -62,12 +67,11 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
         for (const std::string& refusal : scan.refusals) spdlog::warn("refused {}", refusal);
         if (list_json) {
             nlohmann::json j = nlohmann::json::array();
-            for (const auto& p : scan.plugins) j.push_back(plugin_json(*p, false));
-            std::cout << j.dump(2) << std::endl;
+            for (const auto& p : scan.plugins) j.push_back(plugin_json(p, false));
+            std::cout << json_text(j) << std::endl;
         } else {
             for (const auto& p : scan.plugins)
-                std::cout << fmt::format("{:<9} {:<16} {:<8} {}\n", kind_name(p->kind()), p->name(),
-                                         p->descriptor().version, p->descriptor().description);
+                std::cout << fmt::format("{:<9} {:<16} {:<8} {}\n", kind_name(p.kind), p.name, clean_text(p.version), clean_text(p.description));
             if (scan.plugins.empty()) std::cout << "no plugins found (set VOBENCH_PLUGIN_PATH)\n";
         }
         exit_code = 0;
@@ -79,26 +83,33 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
     info->add_option("NAME", info_name, "Plugin name or path")->required();
     info->add_flag("--json", info_json, "Print JSON");
     info->callback([&exit_code] {
-        const PluginPtr p = PluginRegistry().find(info_name);
-        const nlohmann::json j = plugin_json(*p, true);
+        const PluginInfo p = PluginRegistry().describe(info_name);
+        const nlohmann::json j = plugin_json(p, true);
         if (info_json) {
-            std::cout << j.dump(2) << std::endl;
+            std::cout << json_text(j) << std::endl;
         } else {
-            std::cout << fmt::format("{} {} ({} plugin, ABI {}, API {}, {})\n{}\n{}\n", p->name(), p->descriptor().version,
-                                     kind_name(p->kind()), p->descriptor().abi_version, p->descriptor().api_version,
-                                     p->descriptor().license, p->descriptor().description, j["path"].get<std::string>());
-            if (p->params().empty()) std::cout << "no parameters\n";
-            for (const sdk::Param& param : p->params()) {
+            std::cout << fmt::format("{} {} ({} plugin, ABI {}, API {}, {})\n{}\n{}\n", p.name, clean_text(p.version), kind_name(p.kind),
+                                     p.abi_version, p.api_version, clean_text(p.license), clean_text(p.description, true),
+                                     j["path"].get<std::string>());
+            if (p.params.empty()) std::cout << "no parameters\n";
+            for (const sdk::Param& param : p.params) {
                 std::string range;
                 if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE)
                     range = fmt::format(" [{} .. {}]", param.min_value, param.max_value);
                 if (param.type == VOBENCH_PARAM_ENUM) range = " {" + param.choices + "}";
                 std::cout << fmt::format("  {:<22} {:<6} = {:<10}{}\n      {}\n", param.name, type_name(param.type),
-                                         param.default_value, range, param.help);
+                                         clean_text(param.default_value), clean_text(range), clean_text(param.help));
             }
         }
         exit_code = 0;
     });
+
+    // Internal: the child that reads one library's descriptor (see abi/plugin_probe.hpp).
+    auto* probe = app.add_subcommand("plugin-probe", "")->group("");
+    static std::string probe_file, probe_out;
+    probe->add_option("file", probe_file)->required();
+    probe->add_option("out", probe_out)->required();
+    probe->callback([&exit_code] { exit_code = probe_plugin_main(probe_file, probe_out); });
 
     auto* check = plugins->add_subcommand("check", "Conformance check of a plugin library (in a child process)");
     static ConformanceOptions check_options;
@@ -108,15 +119,11 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
     check->add_option("--dataset-path", dataset_path, "For dataset plugins: a sequence to open and read");
     check->add_option("--timeout", check_options.timeout_s, "Seconds before a hanging plugin is killed")->capture_default_str();
     check->add_flag("--in-process", in_process, "Run in this process (used by the isolated check itself)");
+    check->add_option("--verdict", check_options.verdict_file, "With --in-process: write the verdict here at the very end")->group("");
     check->callback([&exit_code] {
         std::filesystem::path path = check_path;
-        if (!std::filesystem::exists(path)) {
-            try {
-                path = PluginRegistry().find(check_path)->path();
-            } catch (const PluginLoadError&) {
-                // keep the path: the check reports it as missing
-            }
-        }
+        if (!std::filesystem::exists(path))
+            if (const auto found = PluginRegistry().locate(check_path)) path = *found;  // else the check reports it missing
         check_options.library = path;
         if (!dataset_path.empty()) check_options.dataset_path = dataset_path;
         exit_code = in_process ? run_conformance(check_options, std::cout) : check_in_child(check_options, std::cout);

@@ -5,6 +5,10 @@
 #include "sweep/cell_runner.hpp"
 #include "sweep/local_scheduler.hpp"
 #include "sweep/slurm_backend.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
+#include "util/folder_lock.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -22,6 +26,17 @@ void print_report(const ReportResult& r, const fs::path& out) {
               << "Report: " << (out / "report.html").string() << "\nTables: " << (out / "summary.md").string() << ", summary.csv, summary.tex; "
               << "leaderboard: " << (out / "leaderboard.json").string() << "\n";
     for (const std::string& f : r.failed_required) std::cout << "REQUIRED CRITERION NOT MET: " << f << "\n";
+    if (!r.problems.empty()) {
+        std::cout << "INCOMPLETE: " << r.problems.size() << " cells missing or unsound:\n";
+        for (const std::string& p : r.problems) std::cout << "  " << clean_text(p) << "\n";
+    }
+}
+
+// 0: complete and every required criterion met; 1: a required criterion failed; 2: cells are missing
+// or their records unsound (the report says which).
+int report_status(const ReportResult& r, bool complete_expected) {
+    if (complete_expected && !r.problems.empty()) return 2;
+    return r.failed_required.empty() ? 0 : 1;
 }
 
 }  // namespace
@@ -71,12 +86,12 @@ void add_run_commands(CLI::App& app, int& exit_code) {
             return;
         }
         const std::string chosen = backend.empty() ? config.backend : backend;
-        fs::create_directories(o.out);
+        const FolderLock lock(o.out);  // one writer per folder, until the report is written
         prepare_output(cells, o);
-        metrics::write_file_atomic(o.out / "sweep.json", sweep_record(config).dump(2) + "\n");
+        write_json_atomic(o.out / "sweep.json", sweep_record(config));
         nlohmann::json list = nlohmann::json::array();
         for (const Cell& c : cells) list.push_back(cell_to_json(c));
-        metrics::write_file_atomic(o.out / "cells.json", list.dump(1) + "\n");
+        write_file_atomic(o.out / "cells.json", json_text(list, 1) + "\n");
         SweepTally t;
         if (chosen == "slurm") {
             spdlog::info("{}: {} cells on Slurm, output {}", config.file.string(), cells.size(), o.out.string());
@@ -101,16 +116,17 @@ void add_run_commands(CLI::App& app, int& exit_code) {
         spdlog::info("sweep finished: {} cells run ({} failed), {} skipped, {} frames in {:.1f} s", t.ran, t.failed, t.skipped, t.frames, t.wall_s);
         const ReportResult r = write_report(o.out);
         print_report(r, o.out);
-        exit_code = r.failed_required.empty() ? 0 : 1;
+        exit_code = report_status(r, only.empty());
     });
 
     auto* report = app.add_subcommand("report", "Rebuild tables, leaderboard, figures and report.html from DIR/runs alone");
     static std::string report_dir;
     report->add_option("dir", report_dir, "A sweep's output folder")->required()->check(CLI::ExistingDirectory);
     report->callback([&exit_code] {
+        const FolderLock lock(report_dir);
         const ReportResult r = write_report(report_dir);
         print_report(r, report_dir);
-        exit_code = r.failed_required.empty() ? 0 : 1;
+        exit_code = report_status(r, true);
     });
 
     auto* collect = app.add_subcommand("collect", "Follow a detached Slurm sweep in DIR to its end, record failed tasks, write the report");
@@ -119,11 +135,12 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     collect->add_option("dir", collect_dir, "The sweep's output folder")->required()->check(CLI::ExistingDirectory);
     collect->add_option("--poll", collect_poll, "Seconds between squeue calls")->capture_default_str();
     collect->callback([&exit_code] {
+        const FolderLock lock(collect_dir);
         const SweepTally t = follow_slurm(collect_dir, collect_poll);
         spdlog::info("collected: {} cells ({} failed)", t.cells, t.failed);
         const ReportResult r = write_report(collect_dir);
         print_report(r, collect_dir);
-        exit_code = r.failed_required.empty() ? 0 : 1;
+        exit_code = report_status(r, true);
     });
 
     // Internal: one Slurm array task (see sweep/slurm_backend.hpp).

@@ -2,6 +2,7 @@
 #include "cli/commands.hpp"
 #include "cli/protocol_options.hpp"
 #include "run/track.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -62,7 +63,7 @@ void add_track_command(CLI::App& app, int& exit_code) {
         }
         if (!r.error.empty()) j["error"] = r.error;
         if (json) {
-            std::cout << j.dump(2) << std::endl;
+            std::cout << json_text(j) << std::endl;
         } else {
             std::cout << fmt::format("{} ({}): {} frames, {} not tracked, {:.3f} ms/frame ({:.1f} fps) in the plugin\n",
                                      r.sequence, r.sensor, r.frames.size(), r.failed_frames, ms, ms > 0 ? 1000.0 / ms : 0.0);

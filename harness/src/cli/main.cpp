@@ -6,6 +6,10 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
+#include <ext/stdio_filebuf.h>
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <iostream>
 
 #ifndef VOBENCH_VERSION
@@ -27,7 +31,22 @@ std::map<std::string, std::string> parse_key_values(const std::vector<std::strin
 
 }  // namespace vobench::cli
 
+namespace {
+
+// The harness's own stdout, for std::cout only. File descriptor 1 itself is pointed at stderr, so
+// that whatever plugin code prints (a library constructor, a reader's printf in `vobench track`)
+// can never mix into --json output or a table. Close-on-exec: children never inherit it.
+// The buffer lives until the process ends (std::cout is flushed after main returns).
+void own_stdout() {
+    const int fd = ::fcntl(STDOUT_FILENO, F_DUPFD_CLOEXEC, 3);
+    if (fd < 0 || ::dup2(STDERR_FILENO, STDOUT_FILENO) < 0) return;
+    std::cout.rdbuf(new __gnu_cxx::stdio_filebuf<char>(fd, std::ios::out));
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
+    own_stdout();
     // Logs go to stderr so that --json output on stdout stays machine-readable.
     auto logger = spdlog::stderr_color_mt("vobench");
     spdlog::set_default_logger(logger);
@@ -65,5 +84,6 @@ int main(int argc, char** argv) {
         return 1;
     }
     if (argc == 1) std::cout << app.help();
+    std::cout.flush();
     return exit_code;
 }

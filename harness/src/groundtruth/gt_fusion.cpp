@@ -1,6 +1,7 @@
 #include "groundtruth/gt_fusion.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "util/files.hpp"
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -196,7 +197,7 @@ void write_fused(const std::filesystem::path& file, const std::vector<FusedPose>
         cov += "\n";
     }
     metrics::write_tum(file, t, "vobench gt fuse: EKF forward, RTS smoother backward");
-    metrics::write_file_atomic(file.string() + ".cov", cov);
+    write_file_atomic(file.string() + ".cov", cov);
 }
 
 }  // namespace vobench::gt

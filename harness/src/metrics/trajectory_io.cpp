@@ -1,4 +1,6 @@
 #include "metrics/trajectory_io.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 
@@ -306,26 +308,9 @@ std::string format_tum_line(const StampedPose& p) {
     return fmt::format("{} {} {} {} {} {} {} {}", p.t, p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w());
 }
 
-void write_file_atomic(const fs::path& path, const std::string& text) {
-    const fs::path tmp = path.string() + ".tmp." + std::to_string(::getpid());
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) throw std::runtime_error(tmp.string() + ": cannot create file");
-        out << text;
-        out.flush();
-        if (!out) throw std::runtime_error(tmp.string() + ": write error");
-    }
-    std::error_code ec;
-    fs::rename(tmp, path, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        throw std::runtime_error(path.string() + ": cannot rename the temporary file into place");
-    }
-}
-
 void write_tum(const fs::path& path, const Trajectory& poses, const std::string& header_comment) {
     std::string text;
-    if (!header_comment.empty()) text += "# " + header_comment + "\n";
+    if (!header_comment.empty()) text += "# " + clean_text(header_comment) + "\n";
     text += "# timestamp tx ty tz qx qy qz qw\n";
     for (const StampedPose& p : poses) {
         text += format_tum_line(p);

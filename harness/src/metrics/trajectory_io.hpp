@@ -61,10 +61,8 @@ Eigen::Isometry3d read_camera_in_marker(const std::filesystem::path& path);
 
 // One TUM line at full (round-trip) double precision, without newline.
 std::string format_tum_line(const StampedPose& pose);
-// Writes a TUM file atomically (temporary file, then rename).
+// Writes a TUM file atomically (temporary file, then rename). The header comment is cleaned of line
+// breaks and control characters: a sequence name can never add a pose line.
 void write_tum(const std::filesystem::path& path, const Trajectory& poses, const std::string& header_comment = "");
-
-// Writes `text` to `path` atomically: a reader sees the old file or the new one, never a part.
-void write_file_atomic(const std::filesystem::path& path, const std::string& text);
 
 }  // namespace vobench::metrics

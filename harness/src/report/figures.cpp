@@ -1,6 +1,8 @@
 #include "report/figures.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -22,13 +24,6 @@ namespace vobench {
 namespace fs = std::filesystem;
 
 namespace {
-
-// A gnuplot single-quoted string: only ' needs escaping (doubled).
-std::string gq(const std::string& s) {
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
-    return out + "'";
-}
 
 // Draws the figure in three formats from one plot body. `noenhanced`: names with _ or ^ print as written.
 std::string script(const std::string& stem, const std::string& setup, const std::string& plot, int width, int height) {
@@ -74,6 +69,15 @@ bool run_gnuplot(const fs::path& folder, const std::string& stem) {
     return ok;
 }
 
+// A label in a gnuplot data file: double-quoted, and gnuplot reads no escapes there, so a quote in
+// the name becomes an apostrophe.
+std::string data_label(const std::string& text) {
+    std::string label = clean_text(text);
+    for (char& c : label)
+        if (c == '"') c = '\'';
+    return "\"" + label + "\"";
+}
+
 const RunRecord* first_ok(const RunGroup* g) {
     if (!g) return nullptr;
     for (const RunRecord* r : g->runs)
@@ -82,8 +86,8 @@ const RunRecord* first_ok(const RunGroup* g) {
 }
 
 void emit(std::vector<Figure>& out, const fs::path& folder, Figure f, const std::string& data, const std::string& gp) {
-    metrics::write_file_atomic(folder / (f.stem + ".dat"), data);
-    metrics::write_file_atomic(folder / (f.stem + ".gp"), gp);
+    write_file_atomic(folder / (f.stem + ".dat"), data);
+    write_file_atomic(folder / (f.stem + ".gp"), gp);
     out.push_back(f);
 }
 
@@ -101,12 +105,6 @@ void draw_all(std::vector<Figure>& figures, const fs::path& folder) {
 
 }  // namespace
 
-std::string file_safe(const std::string& name) {
-    std::string out;
-    for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_') ? c : '_';
-    return out.substr(0, 80);
-}
-
 std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
     fs::create_directories(folder);
     if (!have_gnuplot()) spdlog::warn("gnuplot is not installed: figure data and scripts are written, not the images (apt-get install gnuplot-nox)");
@@ -121,16 +119,16 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 const RunRecord* r = first_ok(find_group(groups, entry, row, s));
                 if (!r || !r->evaluation->rpe || r->evaluation->rpe->pairs.empty()) continue;
                 const double t0 = r->evaluation->rpe->pairs.front().t_first;
-                data += fmt::format("# {} (cell {})\n# t_s rpe_trans_m rpe_rot_deg\n", sensor_title(s), r->cell.id);
+                data += fmt::format("# {} (cell {})\n# t_s rpe_trans_m rpe_rot_deg\n", clean_text(sensor_title(s)), clean_text(r->cell.id));
                 for (const auto& p : r->evaluation->rpe->pairs) data += fmt::format("{:.9f} {:.9g} {:.9g}\n", p.t_first - t0, p.trans_m, p.rot_deg);
                 data += "\n\n";
                 plot += fmt::format("{}'{}.dat' index {} using 1:2 with lines lw 1.5 title {}", plot.empty() ? "plot " : ", ",
-                                    file_safe("rpe_" + entry + "_" + row), block++, gq(sensor_title(s)));
+                                    file_stem({"rpe", entry, row}), block++, gnuplot_quoted(sensor_title(s)));
             }
             if (block == 0) continue;
-            Figure f{"rpe", fmt::format("RPE over time — {} on {}", entry, row), file_safe("rpe_" + entry + "_" + row), false};
+            Figure f{"rpe", fmt::format("RPE over time — {} on {}", entry, row), file_stem({"rpe", entry, row}), false};
             const std::string setup = fmt::format("set title {}\nset xlabel 'time [s]'\nset ylabel 'translational RPE [m]'\nset grid\nset key top left",
-                                                  gq(f.title));
+                                                  gnuplot_quoted(f.title));
             emit(figures, folder, f, data, script(f.stem, setup, plot, 800, 400));
         }
         // Fig. 13: the path from above, coloured by the ATE residual; the two axes of largest extent.
@@ -150,17 +148,17 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
             if (extent.z() > extent.x() && extent.x() <= extent.y()) a = 2;
             else if (extent.z() > extent.y() && extent.y() < extent.x()) b = 2;
             static const char* axis[] = {"x", "y", "z"};
-            std::string data = fmt::format("# gt_{0} gt_{1} est_{0} est_{1} ate_m (cell {2})\n", axis[a], axis[b], r->cell.id);
+            std::string data = fmt::format("# gt_{0} gt_{1} est_{0} est_{1} ate_m (cell {2})\n", axis[a], axis[b], clean_text(r->cell.id));
             for (std::size_t k = 0; k < gt.size(); ++k)
                 data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b], r->evaluation->ate->errors[k]);
             Figure f{"traj", fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor), r->evaluation->ate->stats.rmse),
-                     file_safe("traj_" + entry + "_" + g.row_label() + "_" + g.sensor), false};
+                     file_stem({"traj", entry, g.row_label(), g.sensor}), false};
             // Equal axis scales, unless the path is nearly a line (then the plot would be a sliver).
             const bool equal = std::min(extent[a], extent[b]) > 0.15 * std::max(extent[a], extent[b]);
             const std::string setup = fmt::format(
                 "set title {}\nset xlabel '{} [m]'\nset ylabel '{} [m]'\n{}set grid\nset cblabel 'ATE [m]'\n"
                 "set palette defined (0 '#2c7bb6', 0.5 '#ffffbf', 1 '#d7191c')\nset key bottom right",
-                gq(f.title), axis[a], axis[b], equal ? "set size ratio -1\n" : "");
+                gnuplot_quoted(f.title), axis[a], axis[b], equal ? "set size ratio -1\n" : "");
             const std::string plot = fmt::format("plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
                                                  "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
                                                  f.stem);
@@ -168,11 +166,11 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         }
         // Fig. 14: bars per sequence and sensor.
         std::string data = "# sequence";
-        for (const std::string& s : sensors) data += fmt::format(" ate_rmse_{0} rpe_rmse_{0}", s.empty() ? "sensor" : s);
+        for (const std::string& s : sensors) data += fmt::format(" ate_rmse_{0} rpe_rmse_{0}", s.empty() ? "sensor" : file_stem(s));
         data += "\n";
         bool any = false;
         for (const std::string& row : rows_of(groups, entry)) {
-            data += "\"" + row + "\"";
+            data += data_label(row);
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
                 const auto ate = g ? summarize(*g, "ate.rmse") : std::nullopt;
@@ -184,17 +182,17 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
             data += "\n";
         }
         if (!any) continue;
-        Figure f{"bars", fmt::format("ATE and RPE per sequence and sensor — {}", entry), file_safe("bars_" + entry), false};
+        Figure f{"bars", fmt::format("ATE and RPE per sequence and sensor — {}", entry), file_stem({"bars", entry}), false};
         std::string ate_plot, rpe_plot;
         for (std::size_t k = 0; k < sensors.size(); ++k) {
-            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k, gq(sensor_title(sensors[k])));
-            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k, gq(sensor_title(sensors[k])));
+            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k, gnuplot_quoted(sensor_title(sensors[k])));
+            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k, gnuplot_quoted(sensor_title(sensors[k])));
         }
         const std::string setup =
             "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\nset grid ytics\n"
             "set xtics rotate by -30\nset yrange [0:*]\nset datafile missing 'NaN'";
         const std::string plot = fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
-                                             gq(f.title), ate_plot, rpe_plot);
+                                             gnuplot_quoted(f.title), ate_plot, rpe_plot);
         emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
     }
     draw_all(figures, folder);

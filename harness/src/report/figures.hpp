@@ -4,7 +4,8 @@
 //   traj_<entry>_<sequence>_<sensor>.*  estimate (aligned) and ground truth from above, coloured by
 //                              the ATE residual (Fig. 13)
 //   bars_<entry>.*             ATE and RPE RMSE per sequence and sensor (Fig. 14)
-// Every name that came from a config or plugin is made safe for a file name and quoted for gnuplot.
+// Every name that came from a config or plugin reaches a file name only through file_stem() (a slug
+// plus a hash, so two entries never share a figure) and a script only through gnuplot_quoted().
 #pragma once
 
 #include "report/aggregate.hpp"
@@ -24,8 +25,5 @@ struct Figure {
 
 // Writes data and scripts under `folder` and runs gnuplot when it is installed (a warning otherwise).
 std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const std::filesystem::path& folder);
-
-// [A-Za-z0-9._-] kept, the rest '_'.
-std::string file_safe(const std::string& name);
 
 }  // namespace vobench

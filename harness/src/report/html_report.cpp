@@ -1,5 +1,8 @@
 #include "report/html_report.hpp"
 
+#include "util/escape.hpp"
+#include "util/files.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -8,22 +11,6 @@
 
 namespace vobench {
 namespace fs = std::filesystem;
-
-std::string html_escape(const std::string& text) {
-    std::string out;
-    out.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&#39;"; break;
-        default: out += c;
-        }
-    }
-    return out;
-}
 
 namespace {
 
@@ -92,7 +79,7 @@ document.body.dataset.ready='yes';
 
 std::string leaderboard_table(const nlohmann::json& lb) {
     const std::string primary = lb["context"]["primary_metric"];
-    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" + html_escape(primary) +
+    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" + html_text(primary) +
                     " (mean)</th><th>95 % interval</th><th>ATE RMSE [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th><th>fps</th>"
                     "<th>cells</th><th>failed</th><th class=\"l\">tied with</th><th class=\"l\">criteria</th></tr></thead><tbody>\n";
     for (const auto& e : lb["entries"]) {
@@ -101,16 +88,16 @@ std::string leaderboard_table(const nlohmann::json& lb) {
         if (agg.contains(primary) && agg[primary].contains("ci95"))
             ci = fmt::format("[{:.4f}, {:.4f}]", agg[primary]["ci95"][0].get<double>(), agg[primary]["ci95"][1].get<double>());
         std::string ties;
-        for (const auto& t : e["tied_with"]) ties += (ties.empty() ? "" : ", ") + html_escape(t.get<std::string>());
+        for (const auto& t : e["tied_with"]) ties += (ties.empty() ? "" : ", ") + html_text(t.get<std::string>());
         std::string crit;
         for (const auto& c : e["criteria"])
             crit += fmt::format("<span class=\"{}\">{} {}</span><br>", c["passed"].get<bool>() ? "pass" : "fail",
-                                c["passed"].get<bool>() ? "✔" : "✘", html_escape(c["criterion"].get<std::string>()));
+                                c["passed"].get<bool>() ? "✔" : "✘", html_text(c["criterion"].get<std::string>()));
         const std::string rank = e["rank"].is_null() ? "" : std::to_string(e["rank"].get<int>());
         h += fmt::format("<tr class=\"{}\"><td data-v=\"{}\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
                          "<td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
                          e["complete"].get<bool>() ? "entry" : "entry failed", rank, rank.empty() ? "–" : rank,
-                         html_escape(e["entry"].get<std::string>()), num(agg, primary, 4), ci, num(agg, "ate.rmse", 4),
+                         html_text(e["entry"].get<std::string>()), num(agg, primary, 4), ci, num(agg, "ate.rmse", 4),
                          num(agg, "rpe.trans.rmse", 4), num(agg, "rpe.rot.rmse", 3), num(agg, "fps", 1), e["cells"].size(),
                          e["failed_cells"].get<int>(), ties, crit);
     }
@@ -122,18 +109,18 @@ std::string accuracy_tables(const std::vector<RunGroup>& groups) {
     std::string h;
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
-        h += "<h3>" + html_escape(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\" rowspan=\"2\">sequence</th>";
-        for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_escape(sensor_title(s)) + "</th>";
+        h += "<h3>" + html_text(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\" rowspan=\"2\">sequence</th>";
+        for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_text(sensor_title(s)) + "</th>";
         h += "</tr><tr>";
         for (std::size_t k = 0; k < sensors.size(); ++k) h += "<th>ATE RMSE [m]</th><th>ATE std [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>";
         h += "</tr></thead><tbody>\n";
         for (const std::string& row : rows_of(groups, entry)) {
-            h += "<tr><td class=\"l\">" + html_escape(row) + "</td>";
+            h += "<tr><td class=\"l\">" + html_text(row) + "</td>";
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
                 const double pos = g ? g->runs.front()->cell.gt_accuracy.position_m : 0, rot = g ? g->runs.front()->cell.gt_accuracy.rotation_deg : 0;
                 for (const auto& [metric, dec] : cols)
-                    h += "<td>" + html_escape(format_metric(g, metric, dec, std::string(metric).rfind("rpe.rot", 0) == 0 ? rot : pos)) + "</td>";
+                    h += "<td>" + html_text(format_metric(g, metric, dec, std::string(metric).rfind("rpe.rot", 0) == 0 ? rot : pos)) + "</td>";
             }
             h += "</tr>\n";
         }
@@ -150,10 +137,10 @@ std::string timing_table(const std::vector<RunGroup>& groups) {
     for (const RunGroup& g : groups) {
         std::string stages;
         for (const std::string& s : stages_of(groups, g.entry))
-            if (const auto ms = stage_mean_ms(g, s)) stages += fmt::format("{} {:.3f}; ", html_escape(s), *ms);
+            if (const auto ms = stage_mean_ms(g, s)) stages += fmt::format("{} {:.3f}; ", html_text(s), *ms);
         h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
                          "<td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
-                         html_escape(g.entry), html_escape(g.row_label()), html_escape(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
+                         html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
                          v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
                          v(timing_mean(g, "read_ms_per_frame"), 3), v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1), stages);
     }
@@ -167,9 +154,9 @@ std::string failures_table(const nlohmann::json& lb) {
     for (const auto& f : lb["failures"])
         h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}/{}</td><td class=\"l\">{}</td>"
                          "<td class=\"l\">{}</td><td>{}</td></tr>\n",
-                         html_escape(f["id"].get<std::string>().substr(0, 12)), html_escape(f["entry"].get<std::string>()),
-                         html_escape(f["dataset"].get<std::string>()), html_escape(f["sequence"].get<std::string>()),
-                         html_escape(sensor_title(f["sensor"].get<std::string>())), html_escape(f["reason"].get<std::string>()),
+                         html_text(f["id"].get<std::string>().substr(0, 12)), html_text(f["entry"].get<std::string>()),
+                         html_text(f["dataset"].get<std::string>()), html_text(f["sequence"].get<std::string>()),
+                         html_text(sensor_title(f["sensor"].get<std::string>())), html_text(f["reason"].get<std::string>()),
                          f["failed_at_frame"].is_null() ? std::string("0") : std::to_string(f["failed_at_frame"].get<long long>()));
     return h + "</tbody></table>\n";
 }
@@ -178,12 +165,12 @@ std::string failures_table(const nlohmann::json& lb) {
 
 std::string render_html_report(const std::vector<RunGroup>& groups, const nlohmann::json& lb, const std::vector<Figure>& figures,
                                const fs::path& figure_folder, const ReportContext& ctx) {
-    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + html_escape(ctx.name) +
+    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + html_text(ctx.name) +
                     " — vobench report</title>\n<style>" + kStyle + "</style></head>\n<body>\n";
-    h += "<h1>" + html_escape(ctx.name) + " — vobench report</h1>\n";
-    h += "<p>Generated " + html_escape(ctx.generated) + " by vobench " + html_escape(lb["context"]["vobench_version"].get<std::string>()) + " on " +
-         html_escape(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_escape(ctx.protocol_text) + "</p>\n";
-    h += "<h2>Leaderboard</h2>\n<p>Ranked by " + html_escape(ctx.rank_by) +
+    h += "<h1>" + html_text(ctx.name) + " — vobench report</h1>\n";
+    h += "<p>Generated " + html_text(ctx.generated) + " by vobench " + html_text(lb["context"]["vobench_version"].get<std::string>()) + " on " +
+         html_text(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_text(ctx.protocol_text) + "</p>\n";
+    h += "<h2>Leaderboard</h2>\n<p>Ranked by " + html_text(ctx.rank_by) +
          " over each entry's cells; entries with a failed cell are not ranked. Ties: 95 % bootstrap intervals overlap. "
          "Click a column to sort.</p>\n" + leaderboard_table(lb);
     h += "<h2>Accuracy (layout of Table 5, Kraft et al. 2016)</h2>\n<p>Mean ± std over repeats. † some repeats failed; ‡ within the ground "
@@ -192,7 +179,7 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
          "below it (‡) cannot be told from the ground truth's own error.</p>\n<table id=\"gt\"><thead><tr><th class=\"l\">dataset</th>"
          "<th>position [m]</th><th>rotation [°]</th></tr></thead><tbody>\n";
     for (const auto& [dataset, a] : dataset_accuracies(groups))
-        h += "<tr><td class=\"l\">" + html_escape(dataset) + "</td><td>" + accuracy_text(a.position_m, "") + "</td><td>" +
+        h += "<tr><td class=\"l\">" + html_text(dataset) + "</td><td>" + accuracy_text(a.position_m, "") + "</td><td>" +
              accuracy_text(a.rotation_deg, "") + "</td></tr>\n";
     h += "</tbody></table>\n";
     h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Reading: "
@@ -210,11 +197,16 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     if (order.size() > kMaxEmbedded) order.resize(kMaxEmbedded);
     for (const Figure* fp : order) {
         const Figure& f = *fp;
-        h += "<figure><img alt=\"" + html_escape(f.title) + "\" src=\"data:image/png;base64," + base64(read_binary(figure_folder / (f.stem + ".png"))) +
-             "\"><figcaption>" + html_escape(f.title) + " — <code>figures/" + html_escape(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
+        h += "<figure><img alt=\"" + html_text(f.title) + "\" src=\"data:image/png;base64," + base64(read_binary(figure_folder / (f.stem + ".png"))) +
+             "\"><figcaption>" + html_text(f.title) + " — <code>figures/" + html_text(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
     }
     h += "<h2>Failures</h2>\n" + failures_table(lb);
-    h += "<h2>Protocol</h2>\n<pre>" + html_escape(lb["context"]["protocol"].dump(2)) + "</pre>\n";
+    if (!ctx.problems.empty()) {
+        h += "<h2 id=\"problems\">Missing or unreadable cells (this report is incomplete)</h2>\n<ul>\n";
+        for (const std::string& p : ctx.problems) h += "<li>" + html_text(p) + "</li>\n";
+        h += "</ul>\n";
+    }
+    h += "<h2>Protocol</h2>\n<pre>" + html_text(json_text(lb["context"]["protocol"])) + "</pre>\n";
     h += "<script>" + std::string(kScript) + "</script>\n</body></html>\n";
     return h;
 }

@@ -1,6 +1,7 @@
 #include "report/report_writer.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "util/escape.hpp"
 #include "report/aggregate.hpp"
 #include "report/figures.hpp"
 #include "report/html_report.hpp"
@@ -8,10 +9,12 @@
 #include "report/run_record.hpp"
 #include "report/tables.hpp"
 #include "sweep/host_info.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
 #include <fstream>
 
 namespace vobench {
@@ -37,48 +40,63 @@ std::string protocol_text(const nlohmann::json& p) {
 }  // namespace
 
 ReportResult write_report(const fs::path& out) {
-    nlohmann::json sweep = nlohmann::json::object();
-    if (std::ifstream in(out / "sweep.json"); in) {
-        sweep = nlohmann::json::parse(in, nullptr, false);
-        if (sweep.is_discarded()) {
-            spdlog::warn("{}: unreadable, using defaults", (out / "sweep.json").string());
-            sweep = nlohmann::json::object();
-        }
+    nlohmann::json sweep = read_json_or_null(out / "sweep.json", 16 << 20);
+    if (!sweep.is_object()) {
+        if (fs::exists(out / "sweep.json")) spdlog::warn("{}: unreadable, using defaults", (out / "sweep.json").string());
+        sweep = nlohmann::json::object();
     }
-    const std::vector<RunRecord> records = load_runs(out);
-    if (records.empty()) throw std::runtime_error((out / "runs").string() + ": no finished cells to report");
+    std::vector<std::string> problems;
+    const std::vector<RunRecord> records = load_runs(out, &problems);
+    if (records.empty())
+        throw std::runtime_error((out / "runs").string() + ": no finished cells to report" +
+                                 (problems.empty() ? std::string() : " (" + std::to_string(problems.size()) + " missing or unsound)"));
     const std::vector<RunGroup> groups = group_runs(records);
 
     ReportContext ctx;
-    ctx.name = sweep.value("name", out.filename().string());
-    ctx.rank_by = sweep.value("rank_by", std::string("ate.rmse"));
     ctx.generated = utc_now_iso();
-    const nlohmann::json protocol = sweep.contains("protocol") ? sweep["protocol"] : records.front().run["cell"]["protocol"];
-    ctx.protocol_text = protocol_text(protocol);
-
+    ctx.problems = problems;
     LeaderboardContext lctx;
+    const nlohmann::json default_protocol = records.front().run["cell"]["protocol"];
+    // sweep.json is a file like any other: a value of the wrong type, an unknown metric or a bad
+    // criterion makes the report use the defaults and say so, never stop it.
+    const auto read_settings = [&](const nlohmann::json& s) {
+        ctx.name = clean_text(s.value("name", out.filename().string()));
+        ctx.rank_by = s.value("rank_by", std::string("ate.rmse"));
+        const auto& names = known_metric_names();
+        if (std::find(names.begin(), names.end(), ctx.rank_by) == names.end()) throw std::invalid_argument("unknown rank_by metric");
+        lctx.protocol = s.contains("protocol") ? s["protocol"] : default_protocol;
+        metrics::protocol_from_json(lctx.protocol);
+        lctx.criteria.clear();
+        for (const auto& c : s.value("criteria", nlohmann::json::array())) {
+            Criterion k = parse_criterion(c.at("criterion"));
+            k.required = c.value("required", true);
+            lctx.criteria.push_back(k);
+        }
+    };
+    try {
+        read_settings(sweep);
+    } catch (const std::exception& e) {
+        spdlog::warn("{}: not usable ({}); the report uses the defaults", (out / "sweep.json").string(), clean_text(e.what()));
+        read_settings(nlohmann::json::object());
+    }
+    ctx.protocol_text = protocol_text(lctx.protocol);
     lctx.name = ctx.name;
     lctx.rank_by = ctx.rank_by;
-    lctx.protocol = protocol;
     lctx.generated = ctx.generated;
-    for (const auto& c : sweep.value("criteria", nlohmann::json::array())) {
-        Criterion k = parse_criterion(c.at("criterion"));
-        k.required = c.value("required", true);
-        lctx.criteria.push_back(k);
-    }
     const nlohmann::json leaderboard = build_leaderboard(records, lctx);
 
-    metrics::write_file_atomic(out / "summary.md", summary_markdown(groups, ctx));
-    metrics::write_file_atomic(out / "summary.csv", summary_csv(groups));
-    metrics::write_file_atomic(out / "summary.tex", summary_latex(groups, ctx));
-    metrics::write_file_atomic(out / "leaderboard.json", leaderboard.dump(2) + "\n");
+    write_file_atomic(out / "summary.md", summary_markdown(groups, ctx));
+    write_file_atomic(out / "summary.csv", summary_csv(groups));
+    write_file_atomic(out / "summary.tex", summary_latex(groups, ctx));
+    write_json_atomic(out / "leaderboard.json", leaderboard);
     const std::vector<Figure> figures = write_figures(groups, out / "figures");
-    metrics::write_file_atomic(out / "report.html", render_html_report(groups, leaderboard, figures, out / "figures", ctx));
+    write_file_atomic(out / "report.html", render_html_report(groups, leaderboard, figures, out / "figures", ctx));
 
     ReportResult r;
     r.runs = records.size();
     for (const RunRecord& rec : records) r.failed += rec.ok ? 0 : 1;
     r.accuracy_markdown = accuracy_markdown(groups);
+    r.problems = problems;
     for (const auto& e : leaderboard["entries"])
         for (const auto& c : e["criteria"])
             if (c["required"].get<bool>() && !c["passed"].get<bool>())

@@ -17,11 +17,13 @@ struct ReportResult {
     std::size_t runs = 0, failed = 0;
     std::string accuracy_markdown;          // for the terminal
     std::vector<std::string> failed_required;  // "entry: criterion" for each required criterion not met
+    std::vector<std::string> problems;         // cells missing or unsound (load_runs): the report is incomplete
 };
 
 // The part of a config the report needs, kept in <out>/sweep.json.
 nlohmann::json sweep_record(const SweepConfig& config);
 
+// Throws std::runtime_error when there is no sound record at all.
 ReportResult write_report(const std::filesystem::path& out);
 
 }  // namespace vobench

@@ -1,10 +1,17 @@
 #include "report/run_record.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "record/results_dir.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
+
+#include <fmt/format.h>
 
 #include <spdlog/spdlog.h>
 
 #include <algorithm>
+#include <cmath>
+#include <set>
 #include <fstream>
 #include <tuple>
 
@@ -53,19 +60,45 @@ MetricMap evaluate_run_files(const fs::path& dir, const metrics::Protocol& proto
     return flatten(*e);
 }
 
-std::vector<RunRecord> load_runs(const fs::path& out) {
+namespace {
+
+// Why an "ok" record's stored metrics are not what its files give, or "".
+std::string stored_metrics_problem(const RunRecord& r) {
+    for (const auto& [name, value] : r.metrics)
+        if (!std::isfinite(value)) return "the metric " + name + " is not finite";
+    const nlohmann::json stored = r.run.value("metrics", nlohmann::json::object());
+    if (!stored.is_object()) return "run.json's metrics are not an object";
+    for (const auto& [name, v] : stored.items()) {
+        const auto it = r.metrics.find(name);
+        if (it == r.metrics.end()) continue;  // timing entries are rebuilt from run.json itself
+        if (!v.is_number() || std::abs(v.get<double>() - it->second) > 1e-9 * std::max(1.0, std::abs(it->second)))
+            return fmt::format("run.json says {} = {}, its trajectory gives {:.17g}", name, v.dump(), it->second);
+    }
+    return "";
+}
+
+}  // namespace
+
+std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* problems) {
     std::vector<RunRecord> records;
-    const fs::path runs = out / "runs";
-    if (!fs::is_directory(runs)) return records;
-    for (const auto& entry : fs::directory_iterator(runs)) {
-        if (!entry.is_directory() || entry.path().filename().string().front() == '.') continue;
-        const fs::path file = entry.path() / "run.json";
-        if (!fs::exists(file)) continue;  // never happens for a cell moved into place; tolerate hand-made folders
+    const ResultsDir dir(out);
+    const auto problem = [&](const std::string& text) {
+        spdlog::warn("{}", text);
+        if (problems) problems->push_back(text);
+    };
+    std::set<std::string> present;
+    for (const std::string& id : dir.run_ids()) {
+        const fs::path run_dir = dir.run_dir(id);
+        present.insert(id);
+        if (const std::string why = record_problem(run_dir, id); !why.empty()) {
+            problem(id + ": not shown, " + why + " (" + run_dir.string() + ")");
+            continue;
+        }
+        const fs::path file = run_dir / "run.json";
         try {
-            std::ifstream in(file);
             RunRecord r;
-            r.dir = entry.path();
-            r.run = nlohmann::json::parse(in);
+            r.dir = run_dir;
+            r.run = read_json_or_null(file, std::uintmax_t{64} << 20);
             r.cell = cell_from_json(r.run.at("cell"));
             r.ok = r.run.at("status") == "ok";
             r.reason = r.run.value("reason", "");
@@ -85,11 +118,18 @@ std::vector<RunRecord> load_runs(const fs::path& out) {
             const double missing = std::max(0.0, r.run.value("frames_expected", 0.0) - r.run.value("frames", 0.0));
             r.metrics["lost_frames"] = lost;
             r.metrics["failed_frames"] = lost + (r.ok ? 0.0 : missing);
+            if (r.ok)
+                if (const std::string why = stored_metrics_problem(r); !why.empty()) {
+                    problem(id + ": not shown, " + why + " (" + run_dir.string() + ")");
+                    continue;
+                }
             records.push_back(std::move(r));
         } catch (const std::exception& e) {
-            spdlog::warn("{}: skipped, not a readable run record: {}", file.string(), e.what());
+            problem(id + ": not shown, run.json is not a readable run record: " + clean_text(e.what()) + " (" + run_dir.string() + ")");
         }
     }
+    for (const std::string& id : dir.expected_ids())
+        if (!present.count(id)) problem(id + ": missing (in cells.json, no record under runs/)");
     std::sort(records.begin(), records.end(), [](const RunRecord& a, const RunRecord& b) {
         return std::tie(a.cell.dataset, a.cell.sequence, a.cell.sensor, a.cell.algorithm, a.cell.params, a.cell.repeat) <
                std::tie(b.cell.dataset, b.cell.sequence, b.cell.sensor, b.cell.algorithm, b.cell.params, b.cell.repeat);

@@ -42,9 +42,10 @@ MetricMap flatten(const metrics::Evaluation& evaluation);
 MetricMap evaluate_run_files(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error,
                              nlohmann::json* full = nullptr);
 
-// Every runs/*/run.json under `out` in the expansion order (dataset, sequence, sensor, algorithm,
-// variant, repeat). A corrupt record is skipped with a warning naming it (a finished cell is never
-// corrupt: run.json is written last and atomically; this guards against hand edits).
-std::vector<RunRecord> load_runs(const std::filesystem::path& out);
+// Every sound record under `out`/runs in the expansion order (dataset, sequence, sensor, algorithm,
+// variant, repeat). A record that is not sound (record_problem(), an unreadable cell, an "ok" record
+// whose stored metrics differ from what its trajectory gives, or are not finite) is left out and
+// named in `problems`, as is every cell of cells.json that has no record. Never throws for a record.
+std::vector<RunRecord> load_runs(const std::filesystem::path& out, std::vector<std::string>* problems = nullptr);
 
 }  // namespace vobench

@@ -1,5 +1,7 @@
 #include "report/tables.hpp"
 
+#include "util/escape.hpp"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -25,26 +27,6 @@ double gt_sigma(const RunGroup* g, const Column& c) {
     return c.rotation ? acc.rotation_deg : acc.position_m;
 }
 
-std::string latex_escape(const std::string& s) {
-    std::string out;
-    for (char ch : s) {
-        switch (ch) {
-        case '_': case '&': case '%': case '#': case '$': case '{': case '}': out += std::string("\\") + ch; break;
-        case '\\': out += "\\textbackslash{}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '^': out += "\\textasciicircum{}"; break;
-        default: out += ch;
-        }
-    }
-    return out;
-}
-
-std::string md_escape(const std::string& s) {
-    std::string out;
-    for (char ch : s) out += ch == '|' ? std::string("\\|") : std::string(1, ch);
-    return out;
-}
-
 std::string opt(const std::optional<double>& v, int decimals) { return v ? fmt::format("{:.{}f}", *v, decimals) : "–"; }
 
 }  // namespace
@@ -63,14 +45,14 @@ std::string accuracy_markdown(const std::vector<RunGroup>& groups) {
     std::string md;
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
-        md += fmt::format("### {}\n\n| sequence |", md_escape(entry));
+        md += fmt::format("### {}\n\n| sequence |", markdown_text(entry));
         for (const std::string& s : sensors)
-            for (const Column& c : kAccuracy) md += fmt::format(" {} {} |", sensor_title(s), c.title);
+            for (const Column& c : kAccuracy) md += fmt::format(" {} {} |", markdown_text(sensor_title(s)), c.title);
         md += "\n|---|";
         for (std::size_t k = 0; k < sensors.size() * std::size(kAccuracy); ++k) md += "---:|";
         md += "\n";
         for (const std::string& row : rows_of(groups, entry)) {
-            md += "| " + md_escape(row) + " |";
+            md += "| " + markdown_text(row) + " |";
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
                 for (const Column& c : kAccuracy) md += " " + format_metric(g, c.metric, c.decimals, gt_sigma(g, c)) + " |";
@@ -83,27 +65,27 @@ std::string accuracy_markdown(const std::vector<RunGroup>& groups) {
 }
 
 std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
-    std::string md = fmt::format("# {} — vobench summary\n\nGenerated {}. {}\n\n", md_escape(ctx.name), ctx.generated, ctx.protocol_text);
+    std::string md = fmt::format("# {} — vobench summary\n\nGenerated {}. {}\n\n", markdown_text(ctx.name), markdown_text(ctx.generated), markdown_text(ctx.protocol_text));
     md += "## Accuracy (layout of Table 5, Kraft et al. 2016)\n\n"
           "Mean ± std over repeats. † some repeats failed (see Failures); ‡ within the ground truth's declared accuracy.\n\n";
     md += accuracy_markdown(groups);
     md += "Ground truth's declared accuracy (1σ; Ceriani et al. 2009):";
     for (const auto& [dataset, a] : dataset_accuracies(groups))
-        md += fmt::format(" {}: {}, {};", md_escape(dataset), accuracy_text(a.position_m, "m"), accuracy_text(a.rotation_deg, "°"));
+        md += fmt::format(" {}: {}, {};", markdown_text(dataset), accuracy_text(a.position_m, "m"), accuracy_text(a.rotation_deg, "°"));
     md.back() = '.';
     md += "\n\n## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n"
           "Frame reading: ms per frame spent reading and decoding, outside the timed call. Harness overhead: the rest of the frame "
           "loop's wall time (hand-over, streaming results), as a share of it.\n\n";
     for (const std::string& entry : entries_of(groups)) {
         const auto stages = stages_of(groups, entry);
-        md += fmt::format("### {}\n\n| sequence | sensor |", md_escape(entry));
-        for (const std::string& s : stages) md += " " + md_escape(s) + " |";
+        md += fmt::format("### {}\n\n| sequence | sensor |", markdown_text(entry));
+        for (const std::string& s : stages) md += " " + markdown_text(s) + " |";
         md += " process() mean | median | p95 | max | fps | frame reading | peak RSS [MB] | harness overhead [%] |\n|---|---|";
         for (std::size_t k = 0; k < stages.size() + 8; ++k) md += "---:|";
         md += "\n";
         for (const RunGroup& g : groups) {
             if (g.entry != entry) continue;
-            md += fmt::format("| {} | {} |", md_escape(g.row_label()), sensor_title(g.sensor));
+            md += fmt::format("| {} | {} |", markdown_text(g.row_label()), markdown_text(sensor_title(g.sensor)));
             for (const std::string& s : stages) md += " " + opt(stage_mean_ms(g, s), 3) + " |";
             for (const char* f : {"mean_ms", "median_ms", "p95_ms", "max_ms"}) md += " " + opt(timing_mean(g, f), 3) + " |";
             md += " " + opt(timing_mean(g, "fps"), 1) + " | " + opt(timing_mean(g, "read_ms_per_frame"), 3) + " | " +
@@ -116,11 +98,16 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
     for (const RunGroup& g : groups)
         for (const RunRecord* r : g.runs)
             if (!r->ok)
-                failures += fmt::format("| {} | {} | {} | {} | {} | {} |\n", r->cell.id.substr(0, 12), md_escape(g.row_label()),
-                                        sensor_title(g.sensor), md_escape(g.entry), md_escape(r->reason),
+                failures += fmt::format("| {} | {} | {} | {} | {} | {} |\n", markdown_text(r->cell.id.substr(0, 12)), markdown_text(g.row_label()),
+                                        markdown_text(sensor_title(g.sensor)), markdown_text(g.entry), markdown_text(r->reason),
                                         r->partial ? fmt::format("{} frames kept", r->run.value("frames", 0)) : "none");
     if (!failures.empty())
         md += "## Failures\n\n| cell | sequence | sensor | entry | reason | partial trajectory |\n|---|---|---|---|---|---|\n" + failures + "\n";
+    if (!ctx.problems.empty()) {
+        md += "## Missing or unreadable cells (this report is incomplete)\n\n";
+        for (const std::string& p : ctx.problems) md += "- " + markdown_text(p) + "\n";
+        md += "\n";
+    }
     return md;
 }
 
@@ -128,11 +115,7 @@ std::string summary_csv(const std::vector<RunGroup>& groups) {
     static const char* kMetrics[] = {"ate.rmse", "ate.mean", "ate.median", "ate.std", "ate.max", "rpe.trans.rmse", "rpe.trans.mean",
                                      "rpe.rot.rmse", "rpe.rot.mean", "lost_frames", "failed_frames"};
     static const char* kTiming[] = {"mean_ms", "median_ms", "p95_ms", "max_ms", "fps", "peak_rss_mb", "harness_overhead_pct"};
-    const auto quote = [](const std::string& s) {
-        std::string q = "\"";
-        for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-        return q + "\"";
-    };
+    const auto quote = [](const std::string& s) { return csv_field(s); };
     std::string csv = "entry,algorithm,params,dataset,sequence,sensor,repeats,failed";
     for (const char* m : kMetrics) csv += fmt::format(",{0}_mean,{0}_std", m);
     for (const char* t : kTiming) csv += fmt::format(",{}", t);
@@ -155,21 +138,21 @@ std::string summary_csv(const std::vector<RunGroup>& groups) {
 }
 
 std::string summary_latex(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
-    std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n", ctx.name, ctx.generated,
-                                  ctx.protocol_text);
+    std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n", latex_comment(ctx.name),
+                                  latex_comment(ctx.generated), latex_comment(ctx.protocol_text));
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
-        tex += "\\begin{table}\n\\centering\n\\caption{" + latex_escape(entry) +
+        tex += "\\begin{table}\n\\centering\n\\caption{" + latex_text(entry) +
                ": ATE and RPE (layout of Table 5, Kraft et al. 2016)}\n\\begin{tabular}{l";
         for (std::size_t k = 0; k < sensors.size(); ++k) tex += "rrrr";
         tex += "}\n\\toprule\n";
-        for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_escape(sensor_title(s)) + "}";
+        for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_text(sensor_title(s)) + "}";
         tex += " \\\\\nSequence";
         for (std::size_t k = 0; k < sensors.size(); ++k)
             tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
         tex += " \\\\\n\\midrule\n";
         for (const std::string& row : rows_of(groups, entry)) {
-            tex += latex_escape(row);
+            tex += latex_text(row);
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
                 for (const Column& c : kAccuracy) {

@@ -19,6 +19,9 @@ struct ReportContext {
     std::string protocol_text;      // "ATE after se3 alignment; RPE at Δ = 4 f (paper protocol …)"
     std::string rank_by = "ate.rmse";
     std::string generated;          // ISO date
+    // Cells the report could not show: "<id>: missing (in cells.json, no record)" or "<id>: <why
+    // the record is unsound>". Listed on every output; a report with any is incomplete.
+    std::vector<std::string> problems;
 };
 
 std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportContext& context);

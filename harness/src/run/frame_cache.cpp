@@ -2,6 +2,7 @@
 
 #include "metrics/trajectory_io.hpp"
 #include "util/hash.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <zstd.h>
@@ -47,7 +48,7 @@ fs::path FrameCache::file_of(uint64_t index) const { return folder_ / fmt::forma
 bool FrameCache::complete() const { return fs::exists(folder_ / "complete"); }
 
 void FrameCache::mark_complete(uint64_t frames) const {
-    metrics::write_file_atomic(folder_ / "complete", fmt::format("{} frames\n", frames));
+    write_file_atomic(folder_ / "complete", fmt::format("{} frames\n", frames));
 }
 
 void FrameCache::store(uint64_t index, const vobench_frame& f) const {
@@ -70,7 +71,7 @@ void FrameCache::store(uint64_t index, const vobench_frame& f) const {
     h.compressed_bytes = n;
     std::string text(reinterpret_cast<const char*>(&h), sizeof(h));
     text.append(packed.data(), n);
-    metrics::write_file_atomic(file_of(index), text);
+    write_file_atomic(file_of(index), text);
 }
 
 std::unique_ptr<OwnedFrame> FrameCache::load(uint64_t index) const {

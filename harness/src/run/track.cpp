@@ -3,12 +3,17 @@
 #include "metrics/trajectory_io.hpp"
 #include "run/frame_cache.hpp"
 #include "run/frame_prefetcher.hpp"
+#include "util/escape.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include <chrono>
 #include <cmath>
+#include <limits>
+#include <unordered_map>
+#include <unordered_set>
 
 namespace vobench {
 
@@ -33,11 +38,45 @@ metrics::Trajectory ground_truth_of(const vobench_sequence_info& info) {
     return gt;
 }
 
+std::string check_ground_truth(const vobench_sequence_info& info) {
+    if (info.ground_truth == nullptr) return "";
+    for (uint64_t k = 0; k < info.gt_count; ++k) {
+        const double* v = info.ground_truth + 8 * k;
+        for (int c = 0; c < 8; ++c)
+            if (!std::isfinite(v[c])) return fmt::format("ground-truth pose {} (stamp {}) is not finite", k, v[0]);
+        if (std::sqrt(v[4] * v[4] + v[5] * v[5] + v[6] * v[6] + v[7] * v[7]) < 1e-9)
+            return fmt::format("ground-truth pose {} (stamp {}) has a zero quaternion", k, v[0]);
+    }
+    return "";
+}
+
+namespace {
+
+// Why the names a plugin emitted in one call break the limits, or "".
+std::string check_names(const FrameRecord& rec, std::unordered_set<std::string>& seen) {
+    if (rec.stages.size() > kMaxNamesPerFrame || rec.counters.size() > kMaxNamesPerFrame)
+        return fmt::format("emitted {} stage and {} counter names in one call (at most {} each)", rec.stages.size(), rec.counters.size(),
+                           kMaxNamesPerFrame);
+    for (const auto& [name, ns] : rec.stages) {
+        if (name.size() > kMaxNameBytes) return fmt::format("named a stage with {} bytes (at most {})", name.size(), kMaxNameBytes);
+        seen.insert("s:" + name);
+    }
+    for (const auto& [name, v] : rec.counters) {
+        if (name.size() > kMaxNameBytes) return fmt::format("named a counter with {} bytes (at most {})", name.size(), kMaxNameBytes);
+        if (!std::isfinite(v)) return fmt::format("reported the non-finite value {} for counter '{}'", v, clean_text(name));
+        seen.insert("c:" + name);
+    }
+    if (seen.size() > kMaxNamesPerRun) return fmt::format("emitted more than {} distinct stage and counter names in one run", kMaxNamesPerRun);
+    return "";
+}
+
+}  // namespace
+
 TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry) {
-    DatasetInstance dataset(registry.find(options.dataset, VOBENCH_KIND_DATASET));
+    DatasetInstance dataset(registry.load(options.dataset, VOBENCH_KIND_DATASET));
     dataset.open(options.path, options.dataset_options);
     const vobench_sequence_info& info = dataset.info();
-    OdometryInstance odometry(registry.find(options.algorithm, VOBENCH_KIND_ODOMETRY));
+    OdometryInstance odometry(registry.load(options.algorithm, VOBENCH_KIND_ODOMETRY));
     odometry.start(*info.camera, options.params, options.seed);
 
     TrackResult result;
@@ -49,6 +88,16 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     if (!options.frame_cache.empty())
         cache = std::make_unique<FrameCache>(options.frame_cache / sequence_key(dataset.plugin(), options.dataset_options, options.path));
     if (options.on_start) options.on_start(info, odometry.plugin());
+    if (const std::string why = check_ground_truth(info); !why.empty()) {
+        result.error = fmt::format("reader '{}': {}", dataset.plugin().name(), why);
+        return result;
+    }
+    if (count == 0) {
+        result.error = fmt::format("reader '{}' declared no frames in {}", dataset.plugin().name(), options.path);
+        return result;
+    }
+    std::unordered_set<std::string> names_seen;
+    double last_stamp = -std::numeric_limits<double>::infinity();
     FramePrefetcher frames(dataset, count, options.prefetch_depth, cache.get());  // decoding overlaps the plugin, on another thread
     const auto loop_start = std::chrono::steady_clock::now();
     for (uint64_t i = 0; i < count; ++i) {
@@ -61,6 +110,12 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
             break;
         }
         const vobench_frame& frame = owned->frame;
+        if (!std::isfinite(frame.timestamp) || !(frame.timestamp > last_stamp)) {
+            result.error = fmt::format("reader '{}' gave frame {} the stamp {}, {}", dataset.plugin().name(), i, frame.timestamp,
+                                       std::isfinite(frame.timestamp) ? fmt::format("not after the previous frame's {}", last_stamp) : "not a finite number");
+            break;
+        }
+        last_stamp = frame.timestamp;
         vobench_pose pose{};
         pose.struct_size = sizeof(pose);
         vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
@@ -82,9 +137,21 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         rec.stages = odometry.host().stage_ns();
         rec.counters = odometry.host().counters();
         const Eigen::Quaterniond q(pose.qw, pose.qx, pose.qy, pose.qz);
-        if (!std::isfinite(pose.tx) || !std::isfinite(pose.ty) || !std::isfinite(pose.tz) || !std::isfinite(q.norm()) ||
-            q.norm() < 1e-9) {
+        if (!std::isfinite(pose.tx) || !std::isfinite(pose.ty) || !std::isfinite(pose.tz) || !std::isfinite(q.norm())) {
             result.error = fmt::format("plugin '{}' returned a non-finite pose at frame {}", odometry.plugin().name(), i);
+            break;
+        }
+        // The ABI asks for a unit quaternion; normalising a wrong one silently would hide a plugin bug.
+        if (std::abs(q.norm() - 1.0) > 1e-6) {
+            result.error = fmt::format("plugin '{}' returned a quaternion of norm {:.9g} (not unit) at frame {}", odometry.plugin().name(), q.norm(), i);
+            break;
+        }
+        if (tracking < VOBENCH_TRACKING_OK || tracking > VOBENCH_TRACKING_FAILED) {
+            result.error = fmt::format("plugin '{}' returned the unknown tracking status {} at frame {}", odometry.plugin().name(), tracking, i);
+            break;
+        }
+        if (const std::string why = check_names(rec, names_seen); !why.empty()) {
+            result.error = fmt::format("plugin '{}' {} at frame {}", odometry.plugin().name(), why, i);
             break;
         }
         if (tracking != VOBENCH_TRACKING_OK) ++result.failed_frames;
@@ -118,37 +185,40 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
 void write_track_outputs(const TrackResult& result, const std::filesystem::path& dir) {
     std::filesystem::create_directories(dir);
     metrics::write_tum(dir / "trajectory.txt", result.estimate, "vobench estimate: " + result.sequence);
-    // Columns: the union of stage and counter names, in first-seen order.
+    // Columns: the union of stage and counter names, in first-seen order; a hash map from name to
+    // column keeps this linear in what the plugin emitted.
     std::vector<std::string> stages, counters;
+    std::unordered_map<std::string, std::size_t> stage_column, counter_column;
     for (const FrameRecord& f : result.frames) {
         for (const auto& [name, ns] : f.stages)
-            if (std::find(stages.begin(), stages.end(), name) == stages.end()) stages.push_back(name);
+            if (stage_column.emplace(name, stages.size()).second) stages.push_back(name);
         for (const auto& [name, v] : f.counters)
-            if (std::find(counters.begin(), counters.end(), name) == counters.end()) counters.push_back(name);
+            if (counter_column.emplace(name, counters.size()).second) counters.push_back(name);
     }
+    // Names are the plugin's: kept to [A-Za-z0-9_.-] in the header, so the CSV stays one header line.
+    const auto column_name = [](const std::string& name) {
+        std::string out;
+        for (char c : clean_text(name)) out += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' ? c : '_';
+        return out;
+    };
     std::string csv = "index,stamp,process_ms,read_ms,status";
-    for (const auto& s : stages) csv += ",stage_" + s + "_ms";
-    for (const auto& c : counters) csv += ",count_" + c;
+    for (const auto& s : stages) csv += ",stage_" + column_name(s) + "_ms";
+    for (const auto& c : counters) csv += ",count_" + column_name(c);
     csv += '\n';
     static const char* kStatus[] = {"ok", "lost", "failed"};
+    std::vector<std::string> row_stages, row_counters;
     for (const FrameRecord& f : result.frames) {
         csv += fmt::format("{},{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6, static_cast<double>(f.read_ns) * 1e-6,
                            f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
-        for (const auto& s : stages) {
-            double ms = 0;
-            for (const auto& [name, ns] : f.stages)
-                if (name == s) ms = static_cast<double>(ns) * 1e-6;
-            csv += fmt::format(",{}", ms);
-        }
-        for (const auto& c : counters) {
-            std::string cell;
-            for (const auto& [name, v] : f.counters)
-                if (name == c) cell = fmt::format("{}", v);
-            csv += "," + cell;
-        }
+        row_stages.assign(stages.size(), "0");
+        row_counters.assign(counters.size(), "");
+        for (const auto& [name, ns] : f.stages) row_stages[stage_column[name]] = fmt::format("{}", static_cast<double>(ns) * 1e-6);
+        for (const auto& [name, v] : f.counters) row_counters[counter_column[name]] = fmt::format("{}", v);
+        for (const auto& v : row_stages) csv += "," + v;
+        for (const auto& v : row_counters) csv += "," + v;
         csv += '\n';
     }
-    metrics::write_file_atomic(dir / "timing.csv", csv);
+    write_file_atomic(dir / "timing.csv", csv);
 }
 
 }  // namespace vobench

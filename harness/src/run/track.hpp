@@ -9,6 +9,7 @@
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
 #include "metrics/evaluation.hpp"
+#include "record/frame_stream.hpp"
 
 #include <filesystem>
 #include <functional>
@@ -17,16 +18,6 @@
 #include <vector>
 
 namespace vobench {
-
-struct FrameRecord {
-    uint64_t index = 0;
-    double stamp = 0;
-    int64_t process_ns = 0;
-    int64_t read_ns = 0;          // waiting for this frame (decoding it, when there is no prefetch thread)
-    vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
-    std::vector<std::pair<std::string, int64_t>> stages;
-    std::vector<std::pair<std::string, double>> counters;
-};
 
 struct TrackOptions {
     std::string dataset;          // reader plugin name or path
@@ -51,7 +42,7 @@ struct TrackResult {
     metrics::Trajectory estimate;
     std::vector<FrameRecord> frames;
     std::size_t failed_frames = 0;        // frames whose tracking status was not OK
-    std::string error;                    // set when the plugin returned an error and the run stopped
+    std::string error;                    // set when the plugin or reader failed and the run stopped
     std::optional<metrics::Evaluation> evaluation;
     std::string evaluation_error;         // why there is no evaluation (no ground truth, no overlap ...)
     std::string sequence, sensor;
@@ -59,7 +50,21 @@ struct TrackResult {
     double mean_ms() const;
 };
 
+// What a plugin may emit per call and per run: past these the run fails with the reason (so that a
+// plugin cannot make the supervisor's work grow without bound).
+constexpr std::size_t kMaxNamesPerFrame = 256;     // stage names, and counter names, in one call
+constexpr std::size_t kMaxNamesPerRun = 1024;      // distinct stage and counter names in one run
+constexpr std::size_t kMaxNameBytes = 128;
+
+// Runs the loop; a plugin error, a bad frame, a non-finite or non-unit pose, a non-finite counter, a
+// frame stamp that is not finite or not after the previous one, and ground truth that is not finite
+// each end the run with `error` naming the plugin (or reader) and the frame. Throws only when the
+// plugins cannot be loaded, opened or started.
 TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry);
+
+// Why the reader's ground truth cannot be used ("" when it is fine): a non-finite value or a zero
+// quaternion, naming the row.
+std::string check_ground_truth(const vobench_sequence_info& info);
 
 // trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, read_ms, status, one column
 // per stage in ms, one per counter) into `dir`, each written atomically.

@@ -2,6 +2,7 @@
 
 #include "sweep/dataset_prep.hpp"
 #include "util/hash.hpp"
+#include "util/files.hpp"
 
 #include <fnmatch.h>
 
@@ -90,7 +91,7 @@ std::string cell_id(const Cell& c) {
     j.erase("path");         // the content checksum stands for it: a moved data set keeps its results
     j.erase("plugin_file");  // the binary hash stands for it
     Hasher h;
-    h.add(j.dump());
+    h.add(json_text(j, -1));
     return h.hex();
 }
 
@@ -102,14 +103,14 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
     std::vector<std::pair<std::string, std::string>> binaries;  // (file, hash) per algorithm
     for (const AlgorithmSpec& a : config.algorithms) {
         std::optional<fs::path> file;
-        if (a.load_error.empty()) file = registry.find(a.plugin, VOBENCH_KIND_ODOMETRY)->path();
+        if (a.load_error.empty()) file = registry.describe(a.plugin, VOBENCH_KIND_ODOMETRY).path;
         else file = registry.locate(a.plugin);
         binaries.emplace_back(file ? fs::absolute(*file).lexically_normal().string() : "", file ? file_hash(*file) : "");
     }
     std::vector<Cell> cells;
     for (const DatasetSpec& d : config.datasets) {
-        const PluginPtr reader = registry.find(d.reader, VOBENCH_KIND_DATASET);
-        const std::string reader_hash = file_hash(reader->path());
+        const PluginInfo reader = registry.describe(d.reader, VOBENCH_KIND_DATASET);
+        const std::string reader_hash = file_hash(reader.path);
         for (const SequenceRef& s : prepare_sequences(d, registry, render)) {
             const std::string checksum = fs::is_directory(s.path) ? dataset_checksum(s.path, memo) : "to-render";
             for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {

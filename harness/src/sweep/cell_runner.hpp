@@ -37,11 +37,12 @@ CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out, const s
 // runs/<id>/ with run.json giving `reason`, written the same atomic way.
 CellOutcome record_unrun_cell(const Cell& cell, const std::filesystem::path& out, const std::string& reason);
 
-// The child side (`vobench cell-exec WORKDIR`): reads WORKDIR/cell.json, runs the track, streams
-// frames.jsonl and writes result.json. Returns the process exit code (0 when result.json was written).
+// The child side (`vobench cell-exec WORKDIR`, sweep/cell_child.cpp): reads WORKDIR/cell.json, runs
+// the track, streams frames.jsonl and writes result.json. Returns the process exit code (0 when
+// result.json was written).
 int exec_cell(const std::filesystem::path& work_dir);
 
-// True when <out>/runs/<id>/run.json exists (a finished cell, successful or not).
+// True when <out>/runs/<id>/ holds a sound record (record_problem() finds nothing), successful or not.
 bool cell_finished(const std::filesystem::path& out, const std::string& id);
 
 }  // namespace vobench

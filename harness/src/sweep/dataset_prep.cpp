@@ -4,6 +4,7 @@
 #include "synth/sequence_writer.hpp"
 #include "synth/trajectory_families.hpp"
 #include "util/hash.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -83,7 +84,7 @@ std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginReg
         return out;
     }
     bool reader_takes_sensor = false;
-    for (const auto& p : registry.find(d.reader, VOBENCH_KIND_DATASET)->params()) reader_takes_sensor |= p.name == "sensor";
+    for (const auto& p : registry.describe(d.reader, VOBENCH_KIND_DATASET).params) reader_takes_sensor |= p.name == "sensor";
     for (const DatasetSpec::Folder& f : d.folders()) {
         SequenceRef ref;
         ref.path = f.path;
@@ -114,7 +115,7 @@ std::string dataset_checksum(const fs::path& sequence, const fs::path& memo_file
     const std::string checksum = h.hex();
     memo[key] = {{"signature", signature}, {"checksum", checksum}};
     fs::create_directories(memo_file.parent_path());
-    metrics::write_file_atomic(memo_file, memo.dump(1) + "\n");
+    write_file_atomic(memo_file, json_text(memo, 1) + "\n");
     return checksum;
 }
 

@@ -1,7 +1,9 @@
 #include "sweep/local_scheduler.hpp"
 
+#include "record/results_dir.hpp"
 #include "sweep/cell_runner.hpp"
 #include "sweep/host_info.hpp"
+#include "util/subprocess.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -20,12 +22,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::string> finished_ids(const fs::path& out) {
+// Finished cells with sound records; with `set_aside`, unsound ones go to corrupt/ (to be run again).
+std::vector<std::string> finished_ids(const fs::path& out, bool set_aside) {
+    const ResultsDir dir(out);
     std::vector<std::string> ids;
-    if (!fs::is_directory(out / "runs")) return ids;
-    for (const auto& e : fs::directory_iterator(out / "runs")) {
-        const std::string name = e.path().filename().string();
-        if (e.is_directory() && name.front() != '.' && fs::exists(e.path() / "run.json")) ids.push_back(name);
+    for (const std::string& id : dir.run_ids()) {
+        const std::string problem = record_problem(dir.run_dir(id), id);
+        if (problem.empty()) {
+            ids.push_back(id);
+        } else if (set_aside) {
+            const fs::path to = set_aside_corrupt(dir, id);
+            spdlog::warn("{}: not a sound record ({}); moved to {}, the cell runs again", dir.run_dir(id).string(), problem, to.string());
+        }
     }
     return ids;
 }
@@ -90,15 +98,22 @@ private:
 
 std::atomic<bool> g_interrupted{false};
 
-extern "C" void on_interrupt(int) { g_interrupted = true; }
+// A signal sent by a process of a running cell (a plugin calling kill(getppid(), SIGTERM), or
+// kill(-1, …)) fails that cell and the sweep goes on; from anyone else (Ctrl-C, `kill`) it stops
+// the sweep.
+extern "C" void on_interrupt(int signal, siginfo_t* info, void*) {
+    if (info != nullptr && info->si_code == SI_USER && blame_signal_sender(signal, info->si_pid)) return;
+    g_interrupted = true;
+}
 
-// SIGINT and SIGTERM set g_interrupted while it lives; the former handlers come back after.
+// SIGINT and SIGTERM go to on_interrupt while it lives; the former handlers come back after.
 class InterruptGuard {
 public:
     InterruptGuard() {
         g_interrupted = false;
         struct sigaction sa {};
-        sa.sa_handler = on_interrupt;
+        sa.sa_sigaction = on_interrupt;
+        sa.sa_flags = SA_SIGINFO;
         sigemptyset(&sa.sa_mask);
         ::sigaction(SIGINT, &sa, &old_int_);
         ::sigaction(SIGTERM, &sa, &old_term_);
@@ -123,7 +138,7 @@ void prepare_output(const std::vector<Cell>& cells, const SweepOptions& options)
         for (const auto& e : fs::directory_iterator(folder))
             if (e.is_regular_file() && e.path().filename().string().find(".tmp.") != std::string::npos) fs::remove(e.path());
     }
-    const std::vector<std::string> done = finished_ids(options.out);
+    const std::vector<std::string> done = finished_ids(options.out, options.resume);
     if (options.fresh && fs::exists(options.out / "runs")) {
         const fs::path aside = options.out / ("discarded-" + utc_now_iso());
         fs::create_directories(aside);

@@ -4,6 +4,7 @@
 #include "sweep/cell_runner.hpp"
 #include "sweep/host_info.hpp"
 #include "util/subprocess.hpp"
+#include "util/files.hpp"
 
 #include <boost/dll/runtime_symbol_info.hpp>
 #include <fmt/format.h>
@@ -36,7 +37,7 @@ nlohmann::json read_jobs(const fs::path& out) {
     return j.is_array() ? j : nlohmann::json::array();
 }
 
-void write_jobs(const fs::path& out, const nlohmann::json& jobs) { metrics::write_file_atomic(out / "slurm" / "jobs.json", jobs.dump(2) + "\n"); }
+void write_jobs(const fs::path& out, const nlohmann::json& jobs) { write_json_atomic(out / "slurm" / "jobs.json", jobs); }
 
 std::map<std::string, Cell> cells_by_id(const fs::path& out) {
     std::ifstream in(out / "cells.json");
@@ -127,7 +128,7 @@ std::string submit_slurm(const std::vector<Cell>& pending, const fs::path& out_i
     const fs::path batch = out / "slurm" / ("batch-" + stamp + ".txt");
     std::string ids;
     for (const Cell& c : pending) ids += c.id + "\n";
-    metrics::write_file_atomic(batch, ids);
+    write_file_atomic(batch, ids);
     const int chunk = std::max(1, o.chunk);
     const std::size_t tasks = (pending.size() + static_cast<std::size_t>(chunk) - 1) / static_cast<std::size_t>(chunk);
 
@@ -142,7 +143,7 @@ std::string submit_slurm(const std::vector<Cell>& pending, const fs::path& out_i
     script += fmt::format("exec {} -q run-cell {} --batch {} --task \"$SLURM_ARRAY_TASK_ID\" --chunk {}\n",
                           sh(boost::dll::program_location().string()), sh(out.string()), sh(batch.string()), chunk);
     const fs::path job_script = out / "slurm" / ("job-" + stamp + ".sh");
-    metrics::write_file_atomic(job_script, script);
+    write_file_atomic(job_script, script);
     fs::permissions(job_script, fs::perms::owner_exec, fs::perm_options::add);
 
     const ChildResult r = slurm_command({"sbatch", "--parsable", job_script.string()});

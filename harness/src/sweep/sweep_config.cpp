@@ -63,7 +63,7 @@ Axis read_axis(const YamlReader& r, const std::string& key, const YAML::Node& no
 
 // params × grid (cartesian product) × zip (lists walked together), each value checked against the
 // plugin's parameter table where it was written.
-std::vector<ParamMap> read_variants(const YamlReader& r, const YAML::Node& a, const PluginLibrary* plugin) {
+std::vector<ParamMap> read_variants(const YamlReader& r, const YAML::Node& a, const PluginInfo* plugin) {
     const auto check = [&](const std::string& key, const std::string& value, const YAML::Node& at) {
         if (!plugin) return;
         try {
@@ -199,9 +199,9 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
         if (d["sequences"]) s.sequences = r.scalars(d["sequences"], "sequences");
         if (d["sensors"]) s.sensors = r.scalars(d["sensors"], "sensors");
     }
-    PluginPtr reader;
+    PluginInfo reader;
     try {
-        reader = registry.find(s.reader, VOBENCH_KIND_DATASET);
+        reader = registry.describe(s.reader, VOBENCH_KIND_DATASET);
     } catch (const PluginLoadError& e) {
         r.fail(d["reader"] ? d["reader"] : d, e.what());
     }
@@ -211,7 +211,7 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
             const std::string key = kv.first.as<std::string>();
             s.options[key] = r.scalar<std::string>(kv.second, "option " + key);
             try {
-                validate_params(*reader, {{key, s.options[key]}});
+                validate_params(reader, {{key, s.options[key]}});
             } catch (const std::invalid_argument& e) {
                 r.fail(kv.first, e.what());
             }
@@ -219,7 +219,7 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
     }
     if (!s.synthetic && !s.sensors.empty()) {
         bool has_sensor_option = false;
-        for (const auto& p : reader->params()) has_sensor_option |= p.name == "sensor";
+        for (const auto& p : reader.params) has_sensor_option |= p.name == "sensor";
         if (!has_sensor_option && s.path.find("{sensor}") == std::string::npos)
             r.fail(d["sensors"], "sensors: the reader '" + s.reader + "' has no 'sensor' option and the path has no {sensor}");
     }
@@ -242,16 +242,16 @@ AlgorithmSpec read_algorithm(const YamlReader& r, const YAML::Node& a, const Plu
     s.where = r.where(a);
     s.plugin = r.scalar<std::string>(r.required(a, "plugin", "an algorithm"), "plugin");
     s.name = a["name"] ? r.scalar<std::string>(a["name"], "name") : s.plugin;
-    PluginPtr plugin;
+    std::optional<PluginInfo> plugin;
     try {
-        plugin = registry.find(s.plugin, VOBENCH_KIND_ODOMETRY);
+        plugin = registry.describe(s.plugin, VOBENCH_KIND_ODOMETRY);
     } catch (const PluginLoadError& e) {
         // A plugin that is not there at all is a mistake in the config; one that is there and refuses
         // to load (another ABI, a broken descriptor) is a result: its cells become failed rows.
         if (!registry.locate(s.plugin)) r.fail(a["plugin"], e.what());
         s.load_error = e.what();
     }
-    s.variants = read_variants(r, a, plugin.get());
+    s.variants = read_variants(r, a, plugin ? &*plugin : nullptr);
     return s;
 }
 

@@ -3,6 +3,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/renderer.hpp"
 #include "synth/trajectory_families.hpp"
+#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -105,15 +106,15 @@ std::string pose_line(const Eigen::Isometry3d& T) {  // x y z qw qx qy qz (w fir
 // trajectory with the camera-in-marker pose from which groundtruth.txt follows (eq. 10).
 void write_tum_calibration(const SynthOptions& o, const SensorModel& sensor, const Paths& paths, uint64_t count) {
     const PinholeCamera& c = sensor.color;
-    metrics::write_file_atomic(o.out / "camera.txt",
+    write_file_atomic(o.out / "camera.txt",
                                fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
                                            "{} {} {} {} {}\n",
                                            c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
     if (paths.marker.empty()) return;
     std::string raw;
     for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
-    metrics::write_file_atomic(o.out / "marker_groundtruth.txt", raw);
-    metrics::write_file_atomic(o.out / "camera_in_marker.txt",
+    write_file_atomic(o.out / "marker_groundtruth.txt", raw);
+    write_file_atomic(o.out / "camera_in_marker.txt",
                                "# camera pose in the marker frame: x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
 }
 
@@ -123,7 +124,7 @@ void write_icl_calibration(const SynthOptions& o, const SensorModel& sensor) {
     const PinholeCamera& c = sensor.color;
     std::vector<double> d(c.distortion.begin(), c.distortion.begin() + c.distortion_count);
     if (d.size() > 2) d[2] = -d[2];
-    metrics::write_file_atomic(o.out / "camera.txt",
+    write_file_atomic(o.out / "camera.txt",
                                fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6, ICL-NUIM convention (fy < 0: images stored upside down)\n"
                                            "{} {} {} {} {}\n",
                                            c.fx, -c.fy, c.cx, (c.height - 1) - c.cy, fmt::join(d, " ")));
@@ -149,10 +150,10 @@ void write_povray_frame(const fs::path& out, uint64_t k, const Eigen::Isometry3d
         text += fmt::format("{:.6f}", d);
         text += (i + 1) % static_cast<std::size_t>(frame.depth.cols) == 0 ? '\n' : ' ';
     }
-    metrics::write_file_atomic(out / (base + ".depth"), text);
+    write_file_atomic(out / (base + ".depth"), text);
     const Eigen::Vector3d p = pose.translation(), dir = pose.linear().col(2), up = -pose.linear().col(1);
     auto vec = [](const char* name, const Eigen::Vector3d& v) { return fmt::format("{} = [{}, {}, {}]';\n", name, v.x(), v.y(), v.z()); };
-    metrics::write_file_atomic(out / (base + ".txt"), vec("cam_pos", p) + vec("cam_dir", dir) + vec("cam_up", up));
+    write_file_atomic(out / (base + ".txt"), vec("cam_pos", p) + vec("cam_dir", dir) + vec("cam_up", up));
 }
 
 std::string sim_rows(const Eigen::Isometry3d& T) {
@@ -165,7 +166,7 @@ std::string sim_rows(const Eigen::Isometry3d& T) {
 // camera.txt for the POV-Ray layout: the images are stored as rendered (fy > 0).
 void write_povray_calibration(const SynthOptions& o, const SensorModel& sensor) {
     const PinholeCamera& c = sensor.color;
-    metrics::write_file_atomic(o.out / "camera.txt",
+    write_file_atomic(o.out / "camera.txt",
                                fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n{} {} {} {} {}\n", c.fx, c.fy, c.cx, c.cy,
                                            fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
 }
@@ -177,18 +178,18 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
     const PinholeCamera& c = sensor.color;
     const std::string id = sensor.name == "kinect1" ? "00022000" : "00033000";
     std::vector<double> d(c.distortion.begin(), c.distortion.end());
-    metrics::write_file_atomic(o.out / "camData.txt",
+    write_file_atomic(o.out / "camData.txt",
                                fmt::format("{}, {}, {}, {}, {}, {}\n", id, c.fx, c.fy, c.cx, c.cy, fmt::join(d, ", ")));
-    metrics::write_file_atomic(o.out / "cameraZnacznik.txt",
+    write_file_atomic(o.out / "cameraZnacznik.txt",
                                "# camera pose in the marker frame\n# x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
     if (!paths.marker.empty()) {
         std::string raw;
         for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
-        metrics::write_file_atomic(o.out / "trajectory.txt", raw);
+        write_file_atomic(o.out / "trajectory.txt", raw);
     }
     if (sensor.principle == DepthPrinciple::TimeOfFlight) {
         const PinholeCamera& dc = sensor.depth;
-        metrics::write_file_atomic(o.out / "depth_camera.txt",
+        write_file_atomic(o.out / "depth_camera.txt",
                                    fmt::format("# depth camera: fx fy cx cy, then its pose in the colour camera frame: x y z qw qx qy qz\n"
                                                "{} {} {} {}\n{}\n",
                                                dc.fx, dc.fy, dc.cx, dc.cy, pose_line(sensor.depth_in_color)));
@@ -262,14 +263,14 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 
     if (povray) {
-        metrics::write_file_atomic(o.out / "synth.gt.sim", gt_sim);
+        write_file_atomic(o.out / "synth.gt.sim", gt_sim);
     } else if (o.layout == "putk2") {
-        metrics::write_file_atomic(o.out / "matched.txt", matched);
+        write_file_atomic(o.out / "matched.txt", matched);
     } else if (icl) {
-        metrics::write_file_atomic(o.out / "associations.txt", associations);
+        write_file_atomic(o.out / "associations.txt", associations);
     } else {
-        metrics::write_file_atomic(o.out / "rgb.txt", rgb_list);
-        metrics::write_file_atomic(o.out / "depth.txt", depth_list);
+        write_file_atomic(o.out / "rgb.txt", rgb_list);
+        write_file_atomic(o.out / "depth.txt", depth_list);
     }
     if (!povray) {
         metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
@@ -293,7 +294,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
                               {"room_boxes", scene.boxes.size()}};
-    metrics::write_file_atomic(o.out / "synth.json", meta.dump(2) + "\n");
+    write_json_atomic(o.out / "synth.json", meta);
     return {count, seconds};
 }
 

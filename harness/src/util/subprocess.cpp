@@ -2,12 +2,14 @@
 
 #include <boost/dll/runtime_symbol_info.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstring>
 #include <fcntl.h>
 #include <fstream>
 #include <spawn.h>
+#include <sys/prctl.h>
 #include <sstream>
 #include <stdexcept>
 #include <sys/wait.h>
@@ -19,13 +21,58 @@ extern char** environ;
 namespace vobench {
 namespace fs = std::filesystem;
 
+std::string signal_name(int signal) {
+    const char* abbrev = sigabbrev_np(signal);
+    return abbrev ? std::string("SIG") + abbrev : "signal " + std::to_string(signal);
+}
+
 std::string ChildResult::describe() const {
     if (cancelled) return "cancelled (killed)";
+    if (signal_blame != 0) return "sent " + signal_name(signal_blame) + " to the harness (killed)";
+    if (log_exceeded) return "wrote more than the log limit to stdout/stderr (killed)";
     if (timed_out) return "timed out after " + std::to_string(timeout_s) + " s (killed)";
     if (memory_exceeded) return "exceeded the memory limit of " + std::to_string(memory_mb) + " MB (killed)";
     if (exited) return "exited with code " + std::to_string(exit_code);
-    std::string name = sigabbrev_np(signal) ? std::string("SIG") + sigabbrev_np(signal) : "?";
-    return "killed by signal " + std::to_string(signal) + " (" + name + ")";
+    return "killed by signal " + std::to_string(signal) + " (" + signal_name(signal) + ")";
+}
+
+namespace {
+
+// The contained children now running, for blame_signal_sender(): lock-free, so a signal handler
+// can read it.
+struct Slot {
+    std::atomic<pid_t> leader{0};
+    std::atomic<int> blame{0};
+};
+constexpr std::size_t kSlots = 1024;
+Slot g_slots[kSlots];
+
+Slot* take_slot(pid_t pid) {
+    for (Slot& s : g_slots) {
+        pid_t free = 0;
+        if (s.leader.compare_exchange_strong(free, pid)) {
+            s.blame = 0;
+            return &s;
+        }
+    }
+    return nullptr;  // more than kSlots cells at once: containment still works, only blame does not
+}
+
+}  // namespace
+
+bool blame_signal_sender(int signal, int sender) noexcept {
+    if (sender <= 0) return false;
+    // getsid and getpgid are plain system calls; the sender is usually still alive while its kill()
+    // is delivered.
+    const pid_t sid = ::getsid(sender), pgid = ::getpgid(sender);
+    for (Slot& s : g_slots) {
+        const pid_t leader = s.leader.load();
+        if (leader > 0 && (sender == leader || sid == leader || pgid == leader)) {
+            s.blame = signal;
+            return true;
+        }
+    }
+    return false;
 }
 
 namespace {
@@ -55,6 +102,71 @@ uint64_t peak_resident_kb(const std::string& pid) {
 
 namespace {
 
+struct ProcEntry {
+    pid_t pid = 0, ppid = 0, pgrp = 0, session = 0;
+    char state = '?';
+};
+
+// /proc/<pid>/stat: the fields after the command name, which may itself hold spaces and ')'.
+bool read_proc_stat(pid_t pid, ProcEntry& e) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    if (!std::getline(in, line)) return false;
+    const auto close = line.rfind(')');
+    if (close == std::string::npos) return false;
+    std::istringstream rest(line.substr(close + 1));
+    e.pid = pid;
+    return static_cast<bool>(rest >> e.state >> e.ppid >> e.pgrp >> e.session);
+}
+
+bool has_tag(pid_t pid, const std::string& tag) {
+    std::ifstream in("/proc/" + std::to_string(pid) + "/environ", std::ios::binary);
+    for (std::string var; std::getline(in, var, '\0');)
+        if (var == tag) return true;
+    return false;
+}
+
+// Every process that belongs to the contained child `leader` (not the leader itself): in its session
+// or process group, or an orphan re-parented to this process that carries its tag.
+std::vector<ProcEntry> group_members(pid_t leader, const std::string& tag) {
+    std::vector<ProcEntry> out;
+    const pid_t self = ::getpid();
+    std::error_code ec;
+    for (fs::directory_iterator it("/proc", ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        if (name.empty() || !std::isdigit(static_cast<unsigned char>(name[0]))) continue;
+        ProcEntry e;
+        if (!read_proc_stat(static_cast<pid_t>(std::stol(name)), e) || e.pid == leader) continue;
+        if (e.session == leader || e.pgrp == leader || (e.ppid == self && has_tag(e.pid, tag))) out.push_back(e);
+    }
+    return out;
+}
+
+// Kills every member, reaps those that are ours, until none is left (or 3 s passed). Returns how many
+// were still running (not zombies) at the first look.
+std::size_t kill_members(pid_t leader, const std::string& tag) {
+    std::size_t running = 0;
+    const pid_t self = ::getpid();
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    for (bool first = true; std::chrono::steady_clock::now() < until; first = false) {
+        const std::vector<ProcEntry> members = group_members(leader, tag);
+        if (members.empty()) break;
+        for (const ProcEntry& m : members) {
+            if (first && m.state != 'Z') ++running;
+            ::kill(m.pid, SIGKILL);
+            if (m.ppid == self) ::waitpid(m.pid, nullptr, WNOHANG);
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    return running;
+}
+
+uint64_t group_resident_kb(pid_t leader, const std::vector<ProcEntry>& members) {
+    uint64_t kb = resident_kb(leader);
+    for (const ProcEntry& m : members) kb += resident_kb(m.pid);
+    return kb;
+}
+
 void decode_status(int status, ChildResult& r) {
     if (WIFEXITED(status)) {
         r.exited = true;
@@ -71,6 +183,19 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     for (std::string& a : argv_storage) argv.push_back(a.data());
     argv.push_back(nullptr);
 
+    // A contained child carries a tag that only it and its descendants have, so that an orphan
+    // that left its session is still known as the cell's.
+    static std::atomic<uint64_t> serial{0};
+    const std::string tag = "VOBENCH_CELL_TAG=" + std::to_string(::getpid()) + "." + std::to_string(serial++);
+    std::vector<std::string> env_storage;
+    for (char** e = environ; *e; ++e)
+        if (std::strncmp(*e, "VOBENCH_CELL_TAG=", 17) != 0) env_storage.emplace_back(*e);
+    if (limits.contain) env_storage.push_back(tag);
+    std::vector<char*> envp;
+    for (std::string& e : env_storage) envp.push_back(e.data());
+    envp.push_back(nullptr);
+    if (limits.contain) ::prctl(PR_SET_CHILD_SUBREAPER, 1);
+
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_addopen(&actions, STDIN_FILENO, "/dev/null", O_RDONLY, 0);
@@ -79,35 +204,53 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
     posix_spawnattr_t attributes;
     posix_spawnattr_init(&attributes);
-    posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);  // its own process group (see ChildLimits::cancel)
-    posix_spawnattr_setpgroup(&attributes, 0);
+    // Its own session (contained) or process group, so that the terminal's SIGINT does not reach it
+    // (see ChildLimits::cancel) and the whole group can be killed at once.
+    if (limits.contain) {
+        posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSID);
+    } else {
+        posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP);
+        posix_spawnattr_setpgroup(&attributes, 0);
+    }
     pid_t pid = 0;
     const auto start = std::chrono::steady_clock::now();
-    const int rc = search ? posix_spawnp(&pid, exe.c_str(), &actions, &attributes, argv.data(), environ)
-                          : posix_spawn(&pid, exe.c_str(), &actions, &attributes, argv.data(), environ);
+    const int rc = search ? posix_spawnp(&pid, exe.c_str(), &actions, &attributes, argv.data(), envp.data())
+                          : posix_spawn(&pid, exe.c_str(), &actions, &attributes, argv.data(), envp.data());
     posix_spawn_file_actions_destroy(&actions);
     posix_spawnattr_destroy(&attributes);
     if (rc != 0) throw std::runtime_error("cannot start " + exe + ": " + std::strerror(rc));
+    Slot* slot = limits.contain ? take_slot(pid) : nullptr;
 
     ChildResult result;
     result.timeout_s = limits.timeout_s;
     result.memory_mb = limits.memory_mb;
     const auto deadline = start + std::chrono::seconds(limits.timeout_s);
     int status = 0;
-    for (;;) {
+    std::vector<ProcEntry> members;
+    for (unsigned tick = 0;; ++tick) {
         const pid_t done = ::waitpid(pid, &status, WNOHANG);
         if (done == pid) break;
         if (done < 0 && errno != EINTR) throw std::runtime_error(std::string("waitpid: ") + std::strerror(errno));
         result.peak_rss_kb = std::max(result.peak_rss_kb, peak_resident_kb(std::to_string(pid)));
+        // Every 100 ms: the group's members (their memory counts), and the log's size.
+        const bool slow_tick = tick % 20 == 0;
+        if (limits.contain && slow_tick) members = group_members(pid, tag);
+        uint64_t resident = limits.contain ? group_resident_kb(pid, members) : resident_kb(pid);
+        if (limits.contain) result.peak_rss_kb = std::max(result.peak_rss_kb, resident);
         if (limits.cancel && limits.cancel->load()) {
             result.cancelled = true;
+        } else if (slot && slot->blame.load() != 0) {
+            result.signal_blame = slot->blame.load();
         } else if (std::chrono::steady_clock::now() >= deadline) {
             result.timed_out = true;
-        } else if (limits.memory_mb > 0 && resident_kb(pid) > limits.memory_mb * 1024) {
+        } else if (limits.memory_mb > 0 && resident > limits.memory_mb * 1024) {
             result.memory_exceeded = true;
+        } else if (slow_tick && limits.max_log_bytes > 0 && !limits.log.empty()) {
+            std::error_code ec;
+            result.log_exceeded = fs::file_size(limits.log, ec) > limits.max_log_bytes && !ec;
         }
-        if (result.timed_out || result.memory_exceeded || result.cancelled) {
-            ::kill(pid, SIGKILL);
+        if (result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded) {
+            ::kill(-pid, SIGKILL);  // the whole process group (the child leads one either way)
             while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
             }
             break;
@@ -115,6 +258,13 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     decode_status(status, result);
+    if (limits.contain) {
+        const bool killed_by_us = result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded;
+        ::kill(-pid, SIGKILL);
+        const std::size_t running = kill_members(pid, tag);
+        if (!killed_by_us) result.left_behind = running;
+        if (slot) slot->leader = 0;
+    }
     result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return result;
 }
@@ -136,7 +286,9 @@ void take_output(ChildResult& result, const fs::path& log) {
 }  // namespace
 
 ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
-    std::vector<std::string> argv{boost::dll::program_location().string()};
+    // $VOBENCH_EXECUTABLE: a program that embeds the harness (the test binary) names the CLI to run.
+    const char* self = std::getenv("VOBENCH_EXECUTABLE");
+    std::vector<std::string> argv{self && *self ? std::string(self) : boost::dll::program_location().string()};
     argv.insert(argv.end(), args.begin(), args.end());
     return spawn_limited(argv, limits, false);
 }

@@ -24,6 +24,14 @@ struct ChildLimits {
     // When this becomes true the child is killed (SIGKILL) and the result says `cancelled`: how Ctrl-C
     // reaches cells, which run in their own process group so that the terminal's SIGINT does not.
     const std::atomic<bool>* cancel = nullptr;
+    // Containment (a sweep's cells): the child starts its own session, carries a tag in its
+    // environment, and everything it spawns belongs to it — the memory limit counts the whole group,
+    // the timeout and the memory limit kill the whole group, and when the child ends every process
+    // still in its session or group, or re-parented to this one with its tag, is killed and counted
+    // (ChildResult::left_behind). This process becomes a child subreaper (PR_SET_CHILD_SUBREAPER) so
+    // that orphans come back to it instead of to init.
+    bool contain = false;
+    uint64_t max_log_bytes = uint64_t{64} << 20;  // stdout + stderr; then SIGKILL (0: no limit)
 };
 
 struct ChildResult {
@@ -33,7 +41,10 @@ struct ChildResult {
     bool timed_out = false;   // killed by us after the timeout
     bool memory_exceeded = false;  // killed by us over the memory limit
     bool cancelled = false;   // killed by us because ChildLimits::cancel became true
-    uint64_t peak_rss_kb = 0; // the child's peak resident set (VmHWM, sampled with the memory check)
+    bool log_exceeded = false;  // killed by us: wrote more than max_log_bytes
+    int signal_blame = 0;     // a process of the (contained) child sent this signal to us; killed
+    std::size_t left_behind = 0;  // processes of the child still running when it ended (killed)
+    uint64_t peak_rss_kb = 0; // peak resident set (VmHWM of the child; with contain, of its whole group)
     double wall_s = 0;
     int timeout_s = 0;
     uint64_t memory_mb = 0;
@@ -43,10 +54,19 @@ struct ChildResult {
     std::string describe() const;
 };
 
+// "SIGTERM", "SIGSEGV", … (or the number).
+std::string signal_name(int signal);
+
+// For a signal handler (async-signal-safe): when `sender` is a contained child that is running, or
+// in its session or process group, marks that child to be killed with ChildResult::signal_blame =
+// `signal` and returns true; otherwise returns false (the signal came from elsewhere: the user).
+bool blame_signal_sender(int signal, int sender) noexcept;
+
 // The high-water resident set of a live process (VmHWM, KiB); 0 if unreadable. Pass "self" for this one.
 uint64_t peak_resident_kb(const std::string& pid);
 
-// Runs <this executable> args... under `limits`. Throws std::runtime_error if it cannot start.
+// Runs <this executable> args... under `limits` ($VOBENCH_EXECUTABLE instead, when set: how a test
+// binary that embeds the harness names the CLI). Throws std::runtime_error if it cannot start.
 ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits);
 
 // Runs another program (looked up on PATH) with output captured into ChildResult::output.

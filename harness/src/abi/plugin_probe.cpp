@@ -1,0 +1,114 @@
+#include "abi/plugin_probe.hpp"
+
+#include "util/files.hpp"
+#include "util/hash.hpp"
+#include "util/subprocess.hpp"
+
+#include <cstdlib>
+#include <map>
+#include <mutex>
+#include <unistd.h>
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path cache_folder() {
+    if (const char* env = std::getenv("VOBENCH_PROBE_CACHE"); env && *env) return std::string(env) == "off" ? fs::path() : fs::path(env);
+    if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg) return fs::path(xdg) / "vobench" / "probes";
+    if (const char* home = std::getenv("HOME"); home && *home) return fs::path(home) / ".cache" / "vobench" / "probes";
+    return {};
+}
+
+// Answers by key: {"info": …} or {"refused": "…"}. The key is the binary's content and this host's
+// ABI/API (another vobench may judge the same library differently).
+std::mutex g_mutex;
+std::map<std::string, nlohmann::json> g_memory;
+
+PluginInfo from_answer(const nlohmann::json& answer, const fs::path& file) {
+    if (answer.contains("refused")) throw PluginLoadError(file.string() + ": " + answer["refused"].get<std::string>());
+    PluginInfo info = plugin_info_from_json(answer.at("info"));
+    info.path = file;  // the same binary may sit at several paths
+    return info;
+}
+
+}  // namespace
+
+int probe_plugin_main(const fs::path& file, const fs::path& out) {
+    nlohmann::json answer;
+    try {
+        answer = {{"info", plugin_info_to_json(PluginLibrary::load(file)->info())}};
+    } catch (const PluginLoadError& e) {
+        // The loader's messages start with the path; the parent adds it back.
+        std::string why = e.what();
+        if (why.rfind(file.string() + ": ", 0) == 0) why.erase(0, file.string().size() + 2);
+        answer = {{"refused", why}};
+    } catch (const std::exception& e) {
+        answer = {{"refused", std::string("could not be read: ") + e.what()}};
+    }
+    write_json_atomic(out, answer);
+    std::fflush(nullptr);
+    ::_exit(0);  // no static destructors of plugin code: they are not part of the descriptor
+}
+
+PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) throw PluginLoadError(file.string() + ": no such file");
+    Hasher h;
+    try {
+        hash_file(h, file);
+    } catch (const std::exception& e) {
+        throw PluginLoadError(file.string() + ": cannot be read");
+    }
+    h.add("abi " + std::to_string(VOBENCH_ABI_VERSION) + " api " + std::to_string(VOBENCH_API_VERSION) + " probe 1");
+    const std::string key = h.hex();
+    {
+        std::lock_guard<std::mutex> lock(g_mutex);
+        if (auto it = g_memory.find(key); it != g_memory.end()) return from_answer(it->second, file);
+    }
+    const fs::path folder = cache_folder();
+    nlohmann::json answer = folder.empty() ? nlohmann::json(nullptr) : read_json_or_null(folder / (key + ".json"), 1 << 20);
+    const auto well_formed = [](const nlohmann::json& a) {
+        if (!a.is_object()) return false;
+        if (a.contains("refused")) return a["refused"].is_string();
+        try {
+            plugin_info_from_json(a.at("info"));
+            return true;
+        } catch (const std::exception&) {
+            return false;
+        }
+    };
+    if (!well_formed(answer)) {
+        const fs::path out = fs::temp_directory_path() / ("vobench-probe-" + std::to_string(::getpid()) + "-" + key + "-" +
+                                                          std::to_string(std::hash<std::string>{}(file.string())) + ".json");
+        fs::remove(out, ec);
+        ChildLimits limits;
+        limits.timeout_s = timeout_s;
+        limits.contain = true;
+        limits.memory_mb = 4096;
+        const ChildResult child = run_self_limited({"plugin-probe", fs::absolute(file).string(), out.string()}, limits);
+        answer = read_json_or_null(out, 1 << 20);
+        fs::remove(out, ec);
+        if (!(child.exited && child.exit_code == 0) || !well_formed(answer)) {
+            // A crash or hang while loading is a property of the binary too: cached like a refusal.
+            answer = {{"refused", "loading it " + (child.timed_out ? "did not finish within " + std::to_string(timeout_s) + " s (killed)"
+                                                                    : "in a child process ended it: " + child.describe())}};
+        }
+        if (!folder.empty() && !child.timed_out) {  // a hang may be the machine's load: probed again next time
+            fs::create_directories(folder, ec);
+            try {
+                if (!ec) write_json_atomic(folder / (key + ".json"), answer);
+            } catch (const std::exception&) {
+                // a read-only cache folder only costs a probe next time
+            }
+        }
+    }
+    {
+        std::lock_guard<std::mutex> lock(g_mutex);
+        g_memory[key] = answer;
+    }
+    return from_answer(answer, file);
+}
+
+}  // namespace vobench

@@ -1,0 +1,237 @@
+// cell_supervisor.cpp — the supervising side of one cell: prepares runs/.work/<id>/, runs the child
+// under the cell's limits, verifies everything it left and writes runs/<id>/ with one rename.
+//
+// The supervisor believes nothing it did not check. A cell is `ok` only when the child exited 0, said
+// "ok", the frame stream parses to one finite pose per frame the reader declared (no more, no fewer),
+// no process of the cell outlived it, and every metric is finite. Anything else is a failed row with
+// the reason and the frame (and the trajectory up to it, marked partial).
+#include "metrics/statistics.hpp"
+#include "record/frame_stream.hpp"
+#include "record/results_dir.hpp"
+#include "run/track.hpp"
+#include "report/run_record.hpp"
+#include "sweep/cell_runner.hpp"
+#include "sweep/host_info.hpp"
+#include "util/files.hpp"
+#include "util/subprocess.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+
+namespace vobench {
+namespace fs = std::filesystem;
+
+namespace {
+
+// Per-frame times of the plugin's process() call only (steady clock, ns → ms), and the stages.
+nlohmann::json timing_summary(const FrameStream& r, const nlohmann::json& result, const ChildResult& child) {
+    std::vector<double> ms;
+    double timed_ns = 0, read_ns = 0;
+    std::vector<std::string> order;
+    std::map<std::string, double> stage_ns;
+    for (const FrameRecord& f : r.frames) {
+        ms.push_back(static_cast<double>(f.process_ns) * 1e-6);
+        timed_ns += static_cast<double>(f.process_ns);
+        read_ns += static_cast<double>(f.read_ns);
+        for (const auto& [name, ns] : f.stages) {
+            if (!stage_ns.count(name)) order.push_back(name);
+            stage_ns[name] += static_cast<double>(ns);
+        }
+    }
+    const double n = static_cast<double>(std::max<std::size_t>(1, ms.size()));
+    nlohmann::json stages = nlohmann::json::array();
+    for (const std::string& s : order) stages.push_back({{"stage", s}, {"mean_ms", stage_ns[s] * 1e-6 / n}});
+    const metrics::ErrorStats stats = ms.empty() ? metrics::ErrorStats{} : metrics::compute_stats(ms);  // numpy semantics
+    const auto number = [&](const char* key) {
+        return result.is_object() && result.contains(key) && result[key].is_number() ? result[key].get<double>() : 0.0;
+    };
+    const double loop_wall_s = number("loop_wall_ns") * 1e-9;
+    nlohmann::json j{{"frames", ms.size()},
+                     {"mean_ms", stats.mean},
+                     {"median_ms", stats.median},
+                     {"p95_ms", ms.empty() ? 0.0 : metrics::percentile_nearest_rank(ms, 0.95)},
+                     {"max_ms", stats.max},
+                     {"fps", stats.mean > 0 ? 1000.0 / stats.mean : 0.0},
+                     {"stages", stages},
+                     {"timed_s", timed_ns * 1e-9},
+                     {"read_s", read_ns * 1e-9},
+                     {"read_ms_per_frame", read_ns * 1e-6 / n},
+                     {"child_wall_s", child.wall_s},
+                     {"peak_rss_mb", std::max(static_cast<double>(child.peak_rss_kb), number("peak_rss_kb")) / 1024.0}};
+    if (loop_wall_s > 0) {
+        j["loop_wall_s"] = loop_wall_s;
+        // What the harness costs around the plugin beyond reading frames: hand-over, streaming, bookkeeping.
+        const double overhead = loop_wall_s - timed_ns * 1e-9 - read_ns * 1e-9;
+        j["harness_overhead_s"] = overhead;
+        j["harness_overhead_pct"] = 100.0 * overhead / loop_wall_s;
+    }
+    return j;
+}
+
+void keep_log_tail(const fs::path& log, std::size_t max_bytes) {
+    std::error_code ec;
+    const auto size = fs::file_size(log, ec);
+    if (ec || size <= max_bytes) return;
+    std::ifstream in(log, std::ios::binary);
+    in.seekg(static_cast<std::streamoff>(size - max_bytes));
+    std::string tail(max_bytes, '\0');
+    in.read(tail.data(), static_cast<std::streamsize>(max_bytes));
+    write_file_atomic(log, fmt::format("[… {} bytes cut …]\n", size - max_bytes) + tail);
+}
+
+// The child's own word on how it ended, if result.json is well-formed: {status, error}.
+struct ChildReport {
+    bool present = false;
+    std::string status, error;
+};
+
+ChildReport child_report(const nlohmann::json& result) {
+    ChildReport r;
+    if (!result.is_object() || !result.contains("status") || !result["status"].is_string()) return r;
+    r.present = true;
+    r.status = result["status"];
+    if (result.contains("error") && result["error"].is_string()) r.error = result["error"];
+    return r;
+}
+
+uint64_t unsigned_field(const nlohmann::json& j, const char* key) {
+    return j.is_object() && j.contains(key) && j[key].is_number_unsigned() ? j[key].get<uint64_t>() : 0;
+}
+
+// Why the cell is not a success, or "" when it is. Checked in the order a user would want to read.
+std::string verdict(bool ran, const std::string& not_run_reason, const ChildResult& child, const ChildReport& report, const FrameStream& frames,
+                    const nlohmann::json& sequence, const std::string& plugin) {
+    const std::size_t got = frames.frames.size();
+    if (!ran) return not_run_reason;
+    if (child.signal_blame != 0)
+        return fmt::format("a process of the cell sent {} to the harness at frame {} (cell killed)", signal_name(child.signal_blame), got);
+    if (!(child.exited && child.exit_code == 0)) {
+        if (report.present) return fmt::format("{} after the last frame (while shutting down)", child.describe());
+        return fmt::format("{} at frame {}", child.describe(), got);
+    }
+    if (!report.present) return fmt::format("the cell's process exited 0 at frame {} without writing its result", got);
+    if (report.status != "ok") return report.error.empty() ? "failed without a message" : report.error;
+    if (!frames.error.empty()) return fmt::format("the frame stream is corrupt after frame {} ({})", got, frames.error);
+    if (!sequence.is_object()) return "the cell's process reported success but never described the sequence";
+    const uint64_t expected = unsigned_field(sequence, "frames_to_run");
+    if (expected == 0) return "the reader declared no frames";
+    if (got != expected)
+        return fmt::format("plugin '{}': {} of the {} frames the reader declared were recorded (the run ended early without an error)",
+                           plugin, got, expected);
+    if (child.left_behind > 0)
+        return fmt::format("left {} process{} running after the cell ended (killed)", child.left_behind, child.left_behind == 1 ? "" : "es");
+    return "";
+}
+
+// Runs the cell's child unless `not_run_reason` is given, then turns whatever it left into runs/<id>/.
+CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason, const std::atomic<bool>* cancel) {
+    const fs::path work = out / "runs" / ".work" / cell.id;
+    const fs::path final_dir = out / "runs" / cell.id;
+    fs::remove_all(work);
+    fs::create_directories(work);
+    write_json_atomic(work / "cell.json", cell_to_json(cell));
+    const std::string started = utc_now_iso();
+
+    ChildResult child;
+    bool ran = false;
+    if (!cell.load_error.empty()) not_run_reason = "plugin '" + cell.plugin + "' refused to load: " + cell.load_error;
+    if (not_run_reason.empty()) {
+        ChildLimits limits;
+        limits.timeout_s = cell.limits.timeout_s;
+        limits.memory_mb = cell.limits.memory_mb;
+        limits.log = work / "child.log";
+        limits.cancel = cancel;
+        limits.contain = true;
+        child = run_self_limited({"cell-exec", work.string()}, limits);
+        ran = true;
+        if (child.cancelled) {  // the user stopped the sweep: not a result, the cell stays to do
+            fs::remove_all(work);
+            CellOutcome o;
+            o.id = cell.id;
+            o.interrupted = true;
+            o.reason = "interrupted";
+            return o;
+        }
+    }
+    const FrameStream frames = decode_frames(work / "frames.jsonl");
+    const nlohmann::json result = read_json_or_null(work / "result.json", 1 << 20);
+    // Absent when the child died before the sequence opened: empty objects, never null.
+    nlohmann::json sequence = read_json_or_null(work / "sequence.json", 1 << 20), plugin = read_json_or_null(work / "plugin.json", 1 << 20);
+    const bool described = sequence.is_object();
+    if (!described) sequence = nlohmann::json::object();
+    if (!plugin.is_object()) plugin = nlohmann::json::object();
+
+    CellOutcome o;
+    o.id = cell.id;
+    o.frames = frames.frames.size();
+    o.reason = verdict(ran, not_run_reason, child, child_report(result), frames, described ? sequence : nlohmann::json(nullptr), cell.plugin);
+
+    TrackResult track;
+    track.estimate = frames.poses;
+    track.frames = frames.frames;
+    track.sequence = cell.sequence;
+    write_track_outputs(track, work);
+    std::string evaluation_error;
+    nlohmann::json evaluation;
+    MetricMap metrics = evaluate_run_files(work, cell.protocol, evaluation_error, &evaluation);
+    // Messages name the folder the user will find, not the work folder that is renamed away.
+    for (std::size_t at; (at = evaluation_error.find(work.string())) != std::string::npos;)
+        evaluation_error.replace(at, work.string().size(), final_dir.string());
+    if (o.reason.empty()) {
+        for (const auto& [name, value] : metrics)
+            if (!std::isfinite(value)) {
+                o.reason = fmt::format("the metric {} is {} (the estimate is absurd): not ranked", name, value);
+                break;
+            }
+        const bool has_gt = unsigned_field(sequence, "gt_count") > 0;
+        if (o.reason.empty() && has_gt && metrics.empty()) o.reason = "the run could not be evaluated: " + evaluation_error;
+    }
+    o.ok = o.reason.empty();
+    if (!o.ok) {  // a failed row ranks nothing: no metric of it is kept
+        for (auto& [name, value] : metrics)
+            if (!std::isfinite(value)) value = 0;  // JSON has no NaN; the row's status says it is not a result
+    }
+    const nlohmann::json timing = timing_summary(frames, result, child);
+
+    nlohmann::json run{{"schema_version", 1},
+                       {"cell", cell_to_json(cell)},
+                       {"status", o.ok ? "ok" : "failed"},
+                       {"reason", o.reason},
+                       {"failed_at_frame", o.ok ? nlohmann::json(nullptr) : nlohmann::json(frames.frames.size())},
+                       {"partial", !o.ok && !frames.frames.empty()},
+                       {"frames", frames.frames.size()},
+                       {"frames_expected", unsigned_field(sequence, "frames_to_run")},
+                       {"lost_frames", frames.lost_frames},
+                       {"plugin", plugin},
+                       {"sequence", sequence},
+                       {"host", host_info()},
+                       {"started", started},
+                       {"finished", utc_now_iso()},
+                       {"child",
+                        {{"outcome", ran ? child.describe() : "not started"}, {"log", "child.log"}, {"processes_left_behind", child.left_behind}}},
+                       {"timing", timing},
+                       {"metrics", o.ok ? nlohmann::json(metrics) : nlohmann::json::object()},
+                       {"evaluation", evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}}}};
+    if (fs::exists(work / "child.log")) keep_log_tail(work / "child.log", 64 * 1024);
+    write_json_atomic(work / "run.json", run);  // last: its presence marks the cell finished
+    fs::remove_all(final_dir);
+    fs::rename(work, final_dir);
+    o.wall_s = child.wall_s;
+    return o;
+}
+
+}  // namespace
+
+bool cell_finished(const fs::path& out, const std::string& id) { return record_problem(ResultsDir(out).run_dir(id), id).empty(); }
+
+CellOutcome run_cell(const Cell& cell, const fs::path& out, const std::atomic<bool>* cancel) { return finish_cell(cell, out, "", cancel); }
+
+CellOutcome record_unrun_cell(const Cell& cell, const fs::path& out, const std::string& reason) {
+    return finish_cell(cell, out, reason, nullptr);
+}
+
+}  // namespace vobench
