@@ -33,6 +33,7 @@ void HostContext::on_log(void* context, vobench_log_level level, const char* mes
 
 void HostContext::on_stage_begin(void* context, const char* stage) {
     auto* self = static_cast<HostContext*>(context);
+    if (self->open_.size() > kMaxTracked) return;  // a runaway plugin: the run fails on the count (run/track.cpp)
     self->open_.push_back({stage ? stage : "", std::chrono::steady_clock::now()});
 }
 
@@ -47,7 +48,7 @@ void HostContext::on_stage_end(void* context, const char* stage) {
         self->open_.erase(std::next(it).base());
         for (auto& [n, total] : self->stages_)
             if (n == name) { total += ns; return; }
-        self->stages_.emplace_back(name, ns);
+        if (self->stages_.size() <= kMaxTracked) self->stages_.emplace_back(name, ns);
         return;
     }
 }
@@ -57,7 +58,9 @@ void HostContext::on_counter(void* context, const char* name, double value) {
     const std::string key = name ? name : "";
     for (auto& [n, v] : self->counters_)
         if (n == key) { v = value; return; }
-    self->counters_.emplace_back(key, value);
+    // Past the limit one more name is kept, so that the host sees the limit crossed and fails the
+    // run; the rest are dropped, so a call that emits 80,000 names costs no more than 257.
+    if (self->counters_.size() <= kMaxTracked) self->counters_.emplace_back(key, value);
 }
 
 int32_t HostContext::on_is_cancelled(void* context) {

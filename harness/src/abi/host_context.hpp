@@ -15,6 +15,9 @@ namespace vobench {
 
 class HostContext {
 public:
+    // Names kept per call (stages, counters, open stages); the 257th is kept so the limit shows.
+    static constexpr std::size_t kMaxTracked = 256;
+
     explicit HostContext(std::string plugin_name);
     HostContext(const HostContext&) = delete;
     HostContext& operator=(const HostContext&) = delete;

@@ -52,7 +52,7 @@ struct TrackResult {
 
 // What a plugin may emit per call and per run: past these the run fails with the reason (so that a
 // plugin cannot make the supervisor's work grow without bound).
-constexpr std::size_t kMaxNamesPerFrame = 256;     // stage names, and counter names, in one call
+constexpr std::size_t kMaxNamesPerFrame = HostContext::kMaxTracked;  // stage names, and counter names, in one call
 constexpr std::size_t kMaxNamesPerRun = 1024;      // distinct stage and counter names in one run
 constexpr std::size_t kMaxNameBytes = 128;
 

@@ -20,7 +20,13 @@ class YamlReader {
 public:
     explicit YamlReader(std::string file) : file_(std::move(file)) {}
 
-    // Parses the file; a syntax error becomes ConfigError("file:line:col: message").
+    // A configuration is small: past these it is refused before anything is built.
+    static constexpr std::size_t kMaxConfigBytes = 1 << 20;
+    static constexpr uint64_t kMaxConfigNodes = 100000;  // aliases expanded
+
+    // Parses the file; a syntax error, a file over kMaxConfigBytes, a document that expands (aliases
+    // counted as copies) to more than kMaxConfigNodes nodes, or a key written twice in one mapping
+    // becomes ConfigError("file:line:col: message").
     YAML::Node load() const;
     const std::string& file() const { return file_; }
 
