@@ -39,10 +39,12 @@ fi
 grep -q "'aggregate' is a required property" broken.log
 
 echo "== figures"
-for f in rpe_put_vo_sim_v1 traj_put_vo_sim_v1_ bars_put_vo; do
-  ls out/figures/ | grep -q "^$f" || { echo "FAIL: no figure $f"; ls out/figures; exit 1; }
+# Stems are a readable slug plus 8 hex digits of the full name (util/escape.hpp file_stem).
+for f in 'rpe_put_vo_sim-v1-[0-9a-f]{8}\.' 'traj_put_vo_sim-v1-[0-9a-f]{8}\.' 'bars_put_vo-[0-9a-f]{8}\.'; do
+  ls out/figures/ | grep -Eq "^$f" || { echo "FAIL: no figure $f"; ls out/figures; exit 1; }
 done
-for ext in png svg pdf dat gp; do test -s "out/figures/bars_put_vo.$ext"; done
+bars=$(ls out/figures/ | grep -E '^bars_put_vo-[0-9a-f]{8}\.gp$' | sed 's/\.gp$//')
+for ext in png svg pdf dat gp; do test -s "out/figures/$bars.$ext"; done
 
 echo "== report.html in headless Chromium"
 if ! command -v chromium > /dev/null; then echo "chromium is not installed (apt-get install chromium): skipped"; exit 77; fi

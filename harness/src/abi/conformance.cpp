@@ -90,14 +90,14 @@ void check_odometry(const PluginPtr& plugin, Report& r) {
                 s == VOBENCH_OK ? "start() accepted it" : "last_error() is empty");
         api->destroy(h);
     }
-    r.step("start with defaults and process 3 synthetic frames");
+    r.step("start with defaults and process 5 synthetic frames");
     vobench_odometry* h = api->create(host.services());
     vobench_params none{sizeof(vobench_params), 0, nullptr, nullptr};
     vobench_odometry_config config{sizeof(config), &camera, &none, 1};
     vobench_status s = api->start(h, &config);
     r.check(s == VOBENCH_OK, "start with defaults", std::string("status ") + status_name(s) + ": " + message_of(api->last_error(h)));
     if (s == VOBENCH_OK) {
-        for (int k = 0; k < 3; ++k) {
+        for (int k = 0; k < 5; ++k) {
             SyntheticFrame f(k, 2 * k);
             vobench_pose pose{};
             pose.struct_size = sizeof(pose);
@@ -187,6 +187,8 @@ int run_conformance(const ConformanceOptions& options, std::ostream& out) {
         plugin = PluginLibrary::load(options.library);
     } catch (const PluginLoadError& e) {
         r.fail("load", e.what());
+        out << "FAIL " << options.library.string() << " (refused)" << std::endl;
+        if (!options.verdict_file.empty()) write_file_atomic(options.verdict_file, "1");
         return 1;
     }
     const vobench_plugin_descriptor& d = plugin->descriptor();

@@ -53,6 +53,7 @@ int probe_plugin_main(const fs::path& file, const fs::path& out) {
 }
 
 PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
+    if (const char* env = std::getenv("VOBENCH_PROBE_TIMEOUT"); env && std::atoi(env) > 0) timeout_s = std::atoi(env);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) throw PluginLoadError(file.string() + ": no such file");
     Hasher h;

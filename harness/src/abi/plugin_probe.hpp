@@ -17,7 +17,8 @@
 namespace vobench {
 
 // The descriptor of `file`, probed in a child; throws PluginLoadError("<file>: <reason>") when the
-// library is refused, crashes or does not answer within `timeout_s`.
+// library is refused, crashes or does not answer within `timeout_s` ($VOBENCH_PROBE_TIMEOUT seconds
+// instead, when set).
 PluginInfo probe_plugin(const std::filesystem::path& file, int timeout_s = 20);
 
 // The child side: loads `file` and writes {"info": …} or {"refused": "…"} to `out`. Returns 0.

@@ -4,6 +4,7 @@
 #include "report/report_writer.hpp"
 #include "sweep/cell_runner.hpp"
 #include "sweep/local_scheduler.hpp"
+#include "sweep/sequence_probe.hpp"
 #include "sweep/slurm_backend.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
@@ -152,6 +153,15 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     batch->add_option("--task", batch_task)->required();
     batch->add_option("--chunk", batch_chunk)->required();
     batch->callback([&exit_code] { exit_code = run_cell_batch(batch_out, batch_file, batch_task, batch_chunk); });
+
+    // Internal: a sequence's frame count from its reader alone (see sweep/sequence_probe.hpp).
+    auto* seq_probe = app.add_subcommand("sequence-probe", "")->group("");
+    static std::string probe_reader, probe_path, probe_options, probe_result;
+    seq_probe->add_option("reader", probe_reader)->required();
+    seq_probe->add_option("path", probe_path)->required();
+    seq_probe->add_option("options", probe_options)->required();
+    seq_probe->add_option("result", probe_result)->required();
+    seq_probe->callback([&exit_code] { exit_code = sequence_probe_main(probe_reader, probe_path, probe_options, probe_result); });
 
     // Internal: the child process of one cell (see sweep/cell_runner.hpp).
     auto* exec = app.add_subcommand("cell-exec", "")->group("");

@@ -1,6 +1,7 @@
 #include "sweep/cell.hpp"
 
 #include "sweep/dataset_prep.hpp"
+#include "sweep/sequence_probe.hpp"
 #include "util/hash.hpp"
 #include "util/files.hpp"
 
@@ -15,6 +16,11 @@ std::string Cell::variant_label() const {
     std::string label;
     for (const auto& [k, v] : params) label += (label.empty() ? "" : " ") + k + "=" + v;
     return label.empty() ? "defaults" : label;
+}
+
+int64_t Cell::frames_required() const {
+    if (frames_declared < 0) return -1;
+    return max_frames > 0 ? std::min<int64_t>(frames_declared, static_cast<int64_t>(max_frames)) : frames_declared;
 }
 
 std::string Cell::entry_label() const {
@@ -41,6 +47,7 @@ nlohmann::json cell_to_json(const Cell& c) {
             {"repeat", c.repeat},
             {"seed", c.seed},
             {"max_frames", c.max_frames},
+            {"frames_declared", c.frames_declared},
             {"protocol", metrics::protocol_json(c.protocol)},
             {"limits", {{"timeout_s", c.limits.timeout_s}, {"memory_mb", c.limits.memory_mb}, {"threads", c.limits.threads}}}};
 }
@@ -67,6 +74,7 @@ Cell cell_from_json(const nlohmann::json& j) {
     c.repeat = j.at("repeat");
     c.seed = j.at("seed");
     c.max_frames = j.at("max_frames");
+    c.frames_declared = j.value("frames_declared", int64_t{-1});
     c.protocol = metrics::protocol_from_json(j.at("protocol"));
     c.limits.timeout_s = j.at("limits").at("timeout_s");
     c.limits.memory_mb = j.at("limits").at("memory_mb");
@@ -90,6 +98,7 @@ std::string cell_id(const Cell& c) {
     j.erase("limits");
     j.erase("path");         // the content checksum stands for it: a moved data set keeps its results
     j.erase("plugin_file");  // the binary hash stands for it
+    j.erase("frames_declared");  // derived from the reader and the checksum
     Hasher h;
     h.add(json_text(j, -1));
     return h.hex();
@@ -113,6 +122,11 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
         const std::string reader_hash = file_hash(reader.path);
         for (const SequenceRef& s : prepare_sequences(d, registry, render)) {
             const std::string checksum = fs::is_directory(s.path) ? dataset_checksum(s.path, memo) : "to-render";
+            const PluginInfo sequence_reader = s.reader == d.reader ? reader : registry.describe(s.reader, VOBENCH_KIND_DATASET);
+            const int64_t declared = render && checksum != "to-render"
+                                         ? probe_frame_count(fs::absolute(sequence_reader.path).string(), file_hash(sequence_reader.path), s.path,
+                                                             s.options, checksum, out, config.limits.timeout_s)
+                                         : -1;
             for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {
                 const AlgorithmSpec& a = config.algorithms[ai];
                 const auto& [plugin_file, plugin_hash] = binaries[ai];
@@ -137,6 +151,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
                         c.repeat = r;
                         c.seed = config.seeds[r];
                         c.max_frames = config.max_frames;
+                        c.frames_declared = declared;
                         c.protocol = config.protocol;
                         c.limits = config.limits;
                         c.id = cell_id(c);

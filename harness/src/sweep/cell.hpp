@@ -27,6 +27,11 @@ struct Cell {
     std::string algorithm, plugin, plugin_file, plugin_hash, load_error;
     ParamMap params;
     uint64_t repeat = 0, seed = 1, max_frames = 0;
+    // The frame count the reader declared when probed alone (sweep/sequence_probe.hpp); -1: unknown.
+    // Derived from the reader and the content checksum, so not part of the id.
+    int64_t frames_declared = -1;
+    // The frames this cell must deliver to succeed, when known: frames_declared capped by max_frames.
+    int64_t frames_required() const;
     // How it is judged and bounded.
     metrics::Protocol protocol;
     Limits limits;

@@ -80,17 +80,21 @@ int exec_cell(const fs::path& work) {
                                                  {"api_version", d.api_version},
                                                  {"file", plugin.path().string()}});
     };
+    std::string stream_error;  // the plugin closed or broke the stream's descriptor
     t.on_frame = [&](const FrameRecord& f, const metrics::StampedPose& p) {
         const std::string line = encode_frame(f, p);
-        std::fwrite(line.data(), 1, line.size(), stream);
-        std::fflush(stream);  // into the kernel: survives the process dying on the next frame
+        // fflush: into the kernel, so the frame survives the process dying on the next one.
+        const bool written = std::fwrite(line.data(), 1, line.size(), stream) == line.size() && std::fflush(stream) == 0;
+        if (!written && stream_error.empty()) stream_error = "the frame stream could not be written at frame " + std::to_string(f.index) +
+                                                             " (its file descriptor was closed or broken inside the process)";
     };
     nlohmann::json result;
     try {
         const TrackResult r = run_track(t, PluginRegistry());
         int64_t timed = 0;
         for (const FrameRecord& f : r.frames) timed += f.process_ns;
-        result = {{"status", r.error.empty() ? "ok" : "failed"}, {"error", r.error}, {"frames", r.frames.size()},
+        const std::string error = r.error.empty() ? stream_error : r.error;
+        result = {{"status", error.empty() ? "ok" : "failed"}, {"error", error}, {"frames", r.frames.size()},
                   {"loop_wall_ns", r.loop_wall_ns}, {"timed_ns", timed}};
     } catch (const std::exception& e) {  // the reader or plugin could not start: a failed row, not a crash
         result = {{"status", "failed"}, {"error", std::string("setting up: ") + e.what()}, {"frames", 0}};

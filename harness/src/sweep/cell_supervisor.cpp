@@ -104,7 +104,7 @@ uint64_t unsigned_field(const nlohmann::json& j, const char* key) {
 
 // Why the cell is not a success, or "" when it is. Checked in the order a user would want to read.
 std::string verdict(bool ran, const std::string& not_run_reason, const ChildResult& child, const ChildReport& report, const FrameStream& frames,
-                    const nlohmann::json& sequence, const std::string& plugin) {
+                    const nlohmann::json& sequence, const std::string& plugin, int64_t required) {
     const std::size_t got = frames.frames.size();
     if (!ran) return not_run_reason;
     if (child.signal_blame != 0)
@@ -117,7 +117,13 @@ std::string verdict(bool ran, const std::string& not_run_reason, const ChildResu
     if (report.status != "ok") return report.error.empty() ? "failed without a message" : report.error;
     if (!frames.error.empty()) return fmt::format("the frame stream is corrupt after frame {} ({})", got, frames.error);
     if (!sequence.is_object()) return "the cell's process reported success but never described the sequence";
-    const uint64_t expected = unsigned_field(sequence, "frames_to_run");
+    const uint64_t said = unsigned_field(sequence, "frames_to_run");
+    // The count the reader gave when probed alone wins over what the cell's process wrote.
+    if (required >= 0 && said != static_cast<uint64_t>(required))
+        return fmt::format("the cell's process said the sequence has {} frames to run, its reader declared {} when probed alone (files "
+                           "of the cell were overwritten?)",
+                           said, required);
+    const uint64_t expected = said;
     if (expected == 0) return "the reader declared no frames";
     if (got != expected)
         return fmt::format("plugin '{}': {} of the {} frames the reader declared were recorded (the run ended early without an error)",
@@ -168,7 +174,8 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     CellOutcome o;
     o.id = cell.id;
     o.frames = frames.frames.size();
-    o.reason = verdict(ran, not_run_reason, child, child_report(result), frames, described ? sequence : nlohmann::json(nullptr), cell.plugin);
+    o.reason = verdict(ran, not_run_reason, child, child_report(result), frames, described ? sequence : nlohmann::json(nullptr), cell.plugin,
+                       cell.frames_required());
 
     TrackResult track;
     track.estimate = frames.poses;

@@ -145,6 +145,7 @@ std::string stem_from(std::string_view name, const Hasher& h) {
         else if (slug.empty() || slug.back() != '-') slug += '-';
     }
     while (!slug.empty() && slug.front() == '.') slug.erase(0, 1);  // never a hidden file, never ".."
+    while (!slug.empty() && (slug.back() == '-' || slug.back() == '_')) slug.pop_back();
     char hex[9];
     std::snprintf(hex, sizeof hex, "%08x", static_cast<unsigned>(h.value() >> 32));
     return (slug.empty() ? std::string("x") : slug) + "-" + hex;
@@ -165,7 +166,7 @@ std::string file_stem(std::initializer_list<std::string_view> parts) {
         const uint64_t size = p.size();
         h.add(&size, sizeof size);
         h.add(p.data(), p.size());
-        joined += (joined.empty() ? "" : "_") + std::string(p);
+        if (!p.empty()) joined += (joined.empty() ? "" : "_") + std::string(p);
     }
     return stem_from(joined, h);
 }

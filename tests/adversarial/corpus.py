@@ -1,0 +1,545 @@
+#!/usr/bin/env python3
+"""The adversarial corpus (issue #14): faults in plugins, readers, data files, configs and results
+folders, each of which must end as a failed or refused row (or a refusal with file:line:column) with
+its reason, while the sweep finishes and its healthy cells stay byte-identical to a sweep without
+the faults. Every case is one line of output; the last line is 'N passed, M failed'.
+
+Run by CTest (tests/adversarial/CMakeLists.txt); by hand:
+  corpus.py --vobench build/bin/vobench --plugins build/tests/adversarial/plugins --work /tmp/corpus \
+            --constant-pose build/plugins/vobench_constant_pose.so --tum build/plugins/vobench_tum.so
+"""
+import argparse
+import csv
+import io
+import json
+import os
+import re
+import resource
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+HOSTILE = "seq'\"\n; system(\"touch PWNED_gp\") `touch PWNED_bt` $(touch PWNED_sh) <script>alert(1)</script> \\input{/etc/passwd} " \
+          "\\write18{touch PWNED_tex} =cmd|' /C calc'!A0 \u202eRTL\u202c | * _x_ [l](u)"
+
+passed, failed = 0, 0
+
+
+def check(name, ok, detail=""):
+    global passed, failed
+    if ok:
+        passed += 1
+        print(f"ok    {name}")
+    else:
+        failed += 1
+        print(f"FAIL  {name}: {detail}")
+    sys.stdout.flush()
+
+
+def run(cmd, timeout=600, env=None, **kw):
+    e = dict(os.environ)
+    if env:
+        e.update(env)
+    return subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=timeout, env=e, **kw)
+
+
+def write(path, text):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as f:
+        f.write(text)
+
+
+def load_json(path):
+    with open(path, encoding="utf-8") as f:  # strict: invalid UTF-8 would raise here
+        return json.load(f)
+
+
+def runs_by_algorithm(out):
+    """{(dataset, algorithm): run.json} of every finished cell."""
+    found = {}
+    for cell in os.listdir(os.path.join(out, "runs")):
+        p = os.path.join(out, "runs", cell, "run.json")
+        if os.path.exists(p):
+            r = load_json(p)
+            found[(r["cell"]["dataset"], r["cell"]["algorithm"])] = r
+    return found
+
+
+def cell_processes():
+    """pids of processes that still carry a cell's tag (none may outlive its cell)."""
+    left = []
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            with open(f"/proc/{pid}/environ", "rb") as f:
+                if b"VOBENCH_CELL_TAG=" in f.read():
+                    left.append(int(pid))
+        except OSError:
+            pass
+    return left
+
+
+def config(path, name, out, datasets, algorithms, extra=""):
+    text = f"name: {json.dumps(name)}\noutput: {json.dumps(out)}\nlimits: {{timeout: 5, memory_mb: 512}}\n{extra}datasets:\n"
+    for d in datasets:
+        text += "  - " + json.dumps(d) + "\n"
+    text += "algorithms:\n"
+    for a in algorithms:
+        text += "  - " + json.dumps(a) + "\n"
+    write(path, text)
+    return path
+
+
+def sweep(args, cfg, jobs=2, extra=()):
+    t0 = time.time()
+    r = run([args.vobench, "run", cfg, "-j", str(jobs), *extra])
+    return r, time.time() - t0
+
+
+def same_healthy(name, faulty_out, clean_out):
+    """The healthy cells of a sweep with faults equal those of a sweep without: trajectory bytes, metrics."""
+    clean = runs_by_algorithm(clean_out)
+    faulty = runs_by_algorithm(faulty_out)
+    for key, c in clean.items():
+        f = faulty.get(key)
+        if f is None:
+            check(f"{name}: healthy cell {key} present", False, "missing in the faulty sweep")
+            continue
+        ta = open(os.path.join(clean_out, "runs", c["cell"]["id"], "trajectory.txt"), "rb").read()
+        tb = open(os.path.join(faulty_out, "runs", f["cell"]["id"], "trajectory.txt"), "rb").read()
+        check(f"{name}: healthy cell {key[0]}/{key[1]} byte-identical (trajectory, metrics, id)",
+              ta == tb and c["metrics"] == f["metrics"] and c["cell"]["id"] == f["cell"]["id"] and f["status"] == "ok",
+              f"status {f['status']} {f['reason']}")
+
+
+def expect_rows(name, out, expected, dataset_key=False):
+    found = runs_by_algorithm(out)
+    for key, pattern in expected.items():
+        r = next((v for k, v in found.items() if (k[0] if dataset_key else k[1]) == key), None)
+        if r is None:
+            check(f"{name}: {key}", False, "no row")
+            continue
+        if pattern == "ok":
+            check(f"{name}: {key} is a healthy row", r["status"] == "ok", r["reason"])
+        else:
+            ok = r["status"] == "failed" and re.search(pattern, r["reason"]) is not None and r["metrics"] == {}
+            check(f"{name}: {key} -> failed row '{r['reason'][:110]}'", ok, f"status {r['status']}, reason {r['reason']!r}, wanted /{pattern}/")
+
+
+# ----- plugins: one fault each, healthy reader -------------------------------------------------------
+
+VO_FAULTS = {
+    "healthy": "ok",
+    "ctor_stdout": "ok",
+    "bad_utf8_strings": "ok",
+    "entry_crash": r"refused to load: .*killed by signal 11 \(SIGSEGV\)",
+    "entry_hang": r"refused to load: .*did not finish within 3 s",
+    "close_fds": r"frame stream could not be written at frame 10",
+    "huge_pose": r"the metric \S+ is (inf|nan)",
+    "nan_counter": r"non-finite value nan for counter 'inliers' at frame 3",
+    "many_counters": r"257 counter names in one call .* at frame 3",
+    "long_counter_name": r"named a counter with 4096 bytes .* at frame 3",
+    "fork_child": r"left 1 process running after the cell ended",
+    "fork_escape": r"left 1 process running after the cell ended",
+    "kill_parent": r"sent SIGTERM to the harness at frame 3",
+    "exit0": r"exited 0 at frame 3 without writing its result",
+    "bad_quaternion": r"quaternion of norm 2 \(not unit\) at frame 3",
+    "null_last_error": r"failed at frame 3 \(error\): no message",
+    "bad_utf8_error": "failed at frame 3 \\(error\\): bad \ufffd",
+    "log_flood": r"wrote more than the log limit .* at frame 3",
+    "fork_memory": r"exceeded the memory limit of 512 MB \(killed\) at frame 3",
+    "unknown_status": r"unknown tracking status 7 at frame 3",
+    "create_null": r"create\(\) returned NULL",
+    "start_error": r"start failed \(error\): deliberately refuses to start",
+    "forge_stream": r"frame stream is corrupt after frame 3",
+    "hang_in_destroy": r"timed out after 5 s \(killed\) at frame 30",
+    "abort_in_destroy": r"killed by signal 6 \(SIGABRT\) at frame 30",
+    "stack_overflow": r"killed by signal 11 \(SIGSEGV\) at frame 3",
+    "raise_sigterm": r"killed by signal 15 \(SIGTERM\) at frame 3",
+    "forge_success": r"its reader declared 30 when probed alone",
+}
+
+READER_FAULTS = {
+    "healthy": "ok",
+    "hostile_name": "ok",
+    "zero_frames": r"declared no frames",
+    "nan_stamp": r"gave frame 5 the stamp nan, not a finite number",
+    "nan_ground_truth": r"ground-truth pose 2 .*is not finite",
+    "stamps_backwards": r"gave frame 4 the stamp .* not after the previous frame",
+    "lies_about_count": r"reading frame 10: .*there is no frame 10",
+    "wrong_size": r"read_frame\(3\) returned a bad frame: colour image is 32x24",
+    "null_camera": r"describe\(\) gave no sequence info or camera",
+    "nan_focal": r"unusable camera",
+    "crash_in_read": r"killed by signal 11 \(SIGSEGV\) at frame 5",
+    "hang_in_open": r"timed out after 5 s",
+    "gt_without_array": r"declares ground truth but gives no array",
+    "null_frame_data": r"read_frame\(2\) returned a bad frame: colour image has no data",
+}
+
+
+def plugin_faults(args, w):
+    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
+    seq = os.path.join(w, "empty_sequence")
+    os.makedirs(seq, exist_ok=True)
+    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    healthy = [{"name": "healthy", "plugin": p("vo", "healthy")}, {"name": "constant_pose", "plugin": args.constant_pose}]
+    clean = config(os.path.join(w, "vo_clean.yaml"), "vo clean", os.path.join(w, "vo_clean"), [reader], healthy)
+    faulty = config(os.path.join(w, "vo_faults.yaml"), "vo faults", os.path.join(w, "vo_faults"), [reader],
+                    healthy[1:] + [{"name": f, "plugin": p("vo", f)} for f in VO_FAULTS])
+    r0, _ = sweep(args, clean)
+    check("plugins: the clean sweep succeeds", r0.returncode == 0, r0.stderr[-2000:])
+    r1, seconds = sweep(args, faulty)
+    check(f"plugins: the sweep with {len(VO_FAULTS) - 3} plugin faults finishes (exit 0, {seconds:.1f} s)",
+          r1.returncode == 0 and "sweep finished" in r1.stderr, f"exit {r1.returncode}: {r1.stderr[-3000:]}")
+    expect_rows("plugins", os.path.join(w, "vo_faults"), VO_FAULTS)
+    same_healthy("plugins", os.path.join(w, "vo_faults"), os.path.join(w, "vo_clean"))
+    check("plugins: no process of any cell outlives it", not cell_processes(), f"left: {cell_processes()}")
+    lb = load_json(os.path.join(w, "vo_faults", "leaderboard.json"))
+    ranked = [e["entry"] for e in lb["entries"] if e.get("rank") is not None]
+    check("plugins: only healthy entries are ranked", set(ranked) <= {"healthy", "ctor_stdout", "bad_utf8_strings", "constant_pose"}, ranked)
+    out = r1.stdout
+    check("plugins: the constructor's stdout never reaches vobench's output", "not vobench's output" not in out, out[:500])
+
+
+def reader_faults(args, w):
+    p = lambda f: os.path.join(args.plugins, f"corpus_reader_{f}.so")
+    seq = os.path.join(w, "empty_sequence")
+    vo = [{"name": "vo", "plugin": os.path.join(args.plugins, "corpus_vo_healthy.so")}]
+    clean = config(os.path.join(w, "reader_clean.yaml"), "readers clean", os.path.join(w, "reader_clean"),
+                   [{"name": "healthy", "reader": p("healthy"), "path": seq}], vo)
+    faulty = config(os.path.join(w, "reader_faults.yaml"), "readers", os.path.join(w, "reader_faults"),
+                    [{"name": f, "reader": p(f), "path": seq} for f in READER_FAULTS], vo)
+    r0, _ = sweep(args, clean)
+    check("readers: the clean sweep succeeds", r0.returncode == 0, r0.stderr[-2000:])
+    r1, seconds = sweep(args, faulty)
+    check(f"readers: the sweep with {len(READER_FAULTS) - 2} reader faults finishes ({seconds:.1f} s)", r1.returncode == 0, r1.stderr[-3000:])
+    expect_rows("readers", os.path.join(w, "reader_faults"), READER_FAULTS, dataset_key=True)
+    same_healthy("readers", os.path.join(w, "reader_faults"), os.path.join(w, "reader_clean"))
+    hostile = next(v for k, v in runs_by_algorithm(os.path.join(w, "reader_faults")).items() if k[0] == "hostile_name")
+    traj = open(os.path.join(w, "reader_faults", "runs", hostile["cell"]["id"], "trajectory.txt")).read().splitlines()
+    poses = [l for l in traj if l and not l.startswith("#")]
+    check("readers: a sequence name with a newline adds no pose line to trajectory.txt", len(poses) == 30, f"{len(poses)} poses")
+    check("readers: no process of any cell outlives it", not cell_processes(), f"left: {cell_processes()}")
+
+
+# ----- data files: the tum reader on broken copies of a rendered sequence ------------------------------
+
+def data_faults(args, w):
+    base = os.path.join(w, "tum_good")
+    if not os.path.isdir(base):
+        r = run([args.vobench, "synth", "--sensor", "kinect1", "--trajectory", "explore1", "--frames", "8", "--seed", "1",
+                 "--layout", "tum", "--out", base])
+        check("data: render an 8-frame TUM-layout sequence", r.returncode == 0, r.stderr[-1000:])
+    root = os.path.join(w, "tum_variants")
+    shutil.rmtree(root, ignore_errors=True)
+    os.makedirs(root)
+
+    def variant(name, mutate):
+        d = os.path.join(root, name)
+        shutil.copytree(base, d)
+        mutate(d)
+        return name
+
+    def lines(d, f):
+        return open(os.path.join(d, f)).read().splitlines()
+
+    def corrupt_png(d):
+        f = os.path.join(d, lines(d, "rgb.txt")[3 + 3].split()[1])
+        data = open(f, "rb").read()
+        open(f, "wb").write(data[: len(data) // 3])
+
+    def missing_depth(d):
+        os.remove(os.path.join(d, lines(d, "depth.txt")[3 + 4].split()[1]))
+
+    def garbage_list(d):
+        with open(os.path.join(d, "rgb.txt"), "a") as f:
+            f.write("this is not a stamp rgb/x.png\n")
+
+    def nan_gt(d):
+        g = lines(d, "groundtruth.txt")
+        g[4] = "0.2 nan nan nan 0 0 0 1"
+        write(os.path.join(d, "groundtruth.txt"), "\n".join(g) + "\n")
+
+    def binary_gt(d):
+        open(os.path.join(d, "groundtruth.txt"), "wb").write(bytes(range(256)) * 64)
+
+    expected = {
+        "good": "ok",
+        variant("corrupt_png", corrupt_png): r"reading frame 3: ",
+        variant("missing_depth", missing_depth): r"reading frame 4: |setting up: .*depth",
+        variant("garbage_list", garbage_list): r"setting up: .*rgb\.txt",
+        variant("nan_ground_truth", nan_gt): r"ok|ground-truth pose .* not finite|groundtruth\.txt",
+        variant("binary_ground_truth", binary_gt): r"setting up: .*groundtruth\.txt",
+    }
+    shutil.copytree(base, os.path.join(root, "good"))
+    hostile_dir = HOSTILE.replace("/", "_")
+    shutil.copytree(base, os.path.join(root, hostile_dir))
+    cp = [{"name": "constant_pose", "plugin": args.constant_pose}]
+    clean = config(os.path.join(w, "data_clean.yaml"), "data clean", os.path.join(w, "data_clean"),
+                   [{"name": "good", "reader": args.tum, "path": os.path.join(root, "good")}], cp)
+    faulty = config(os.path.join(w, "data_faults.yaml"), HOSTILE, os.path.join(w, "data_faults"),
+                    [{"name": k, "reader": args.tum, "path": os.path.join(root, k)} for k in expected] +
+                    [{"name": HOSTILE, "reader": args.tum, "path": root, "sequences": [hostile_dir]}], cp)
+    r0, _ = sweep(args, clean)
+    check("data: the clean sweep succeeds", r0.returncode == 0, r0.stderr[-2000:])
+    r1, seconds = sweep(args, faulty, extra=())
+    check(f"data: the sweep over {len(expected) - 1} broken data folders and a hostile name finishes ({seconds:.1f} s)",
+          r1.returncode == 0, r1.stderr[-3000:])
+    found = runs_by_algorithm(os.path.join(w, "data_faults"))
+    for name, pattern in expected.items():
+        r = found.get((name, "constant_pose"))
+        if r is None:
+            check(f"data: {name}", False, "no row")
+        elif pattern == "ok":
+            check(f"data: {name} is a healthy row", r["status"] == "ok", r["reason"])
+        else:
+            ok = (pattern.startswith("ok|") and r["status"] == "ok") or (r["status"] == "failed" and re.search(pattern, r["reason"]))
+            check(f"data: {name} -> {r['status']} '{r['reason'][:100]}'", bool(ok), f"wanted /{pattern}/")
+    same_healthy("data", os.path.join(w, "data_faults"), os.path.join(w, "data_clean"))
+    hostile_outputs(os.path.join(w, "data_faults"), "data (hostile dataset, sweep and folder names)")
+
+
+def hostile_outputs(out, what):
+    """Every output of a report whose names are hostile: parses, and no command ran."""
+    pwned = [os.path.join(dp, f) for dp, _, fs in os.walk(os.path.dirname(out)) for f in fs if f.startswith("PWNED")]
+    pwned += [f for f in os.listdir(".") if f.startswith("PWNED")]
+    check(f"{what}: no command ran (gnuplot system, backticks, $(…), \\write18)", not pwned, pwned)
+    md = open(os.path.join(out, "summary.md"), encoding="utf-8").read()
+    rows = [l for l in md.splitlines() if l.startswith("|")]
+    bad_rows = [l for l in rows if (len(re.findall(r"(?<!\\)\|", l)) != len(re.findall(r"(?<!\\)\|", rows[0])) and "---" not in l and
+                                    not l.startswith("| cell") and not l.startswith("| sequence"))]
+    check(f"{what}: summary.md has no raw newline, <script> or unescaped | in a name", "<script>" not in md and "\n; system" not in md,
+          md[:300])
+    with open(os.path.join(out, "summary.csv"), encoding="utf-8", newline="") as f:
+        table = list(csv.reader(f))
+    check(f"{what}: summary.csv parses to rows of equal width, no cell a formula",
+          len({len(r) for r in table}) == 1 and not any(c[:1] in "=+@" for r in table[1:] for c in r if c and not re.match(r"^[-+]?[0-9.eE+-]+$", c)),
+          [len(r) for r in table])
+    tex = open(os.path.join(out, "summary.tex"), encoding="utf-8").read()
+    commands = set(re.findall(r"\\([a-zA-Z]+)", tex))
+    allowed = {"begin", "end", "centering", "caption", "toprule", "midrule", "bottomrule", "multicolumn", "textbackslash", "textasciitilde",
+               "textasciicircum", "textless", "textgreater", "textbar", "textquotedbl", "pm", "dagger", "ddagger", "circ", "usepackage"}
+    body = "\n".join(l for l in tex.splitlines() if not l.startswith("%"))
+    check(f"{what}: summary.tex runs no command but its own (\\input and \\write18 escaped)",
+          set(re.findall(r"\\([a-zA-Z]+)", body)) <= allowed and all("\n" not in l for l in tex.splitlines()), commands - allowed)
+    html = open(os.path.join(out, "report.html"), encoding="utf-8").read()
+    check(f"{what}: report.html carries the names as text only", html.count("<script>") == 1 and "alert(1)</script>" not in html and
+          "\u202e" not in html, "a <script> or a bidi override from a name")
+    load_json(os.path.join(out, "leaderboard.json"))
+    check(f"{what}: leaderboard.json is valid UTF-8 JSON", True)
+    figs = os.path.join(out, "figures")
+    if shutil.which("gnuplot"):
+        logs = [f for f in os.listdir(figs) if f.endswith(".log")]
+        pngs = [f for f in os.listdir(figs) if f.endswith(".png")]
+        check(f"{what}: gnuplot drew every figure ({len(pngs)} PNG, no error log)", pngs and not logs, logs)
+    stems = [f[:-3] for f in os.listdir(figs) if f.endswith(".gp")]
+    check(f"{what}: figure names are slugs with a hash", all(re.match(r"^[a-z0-9._-]+-[0-9a-f]{8}$", s) for s in stems), stems)
+
+
+# ----- configs -----------------------------------------------------------------------------------------
+
+def config_faults(args, w):
+    d = os.path.join(w, "configs")
+    os.makedirs(d, exist_ok=True)
+    bomb = 'a: &a ["x","x","x","x","x","x","x","x","x"]\n'
+    for p_, q in zip("abcdefgh", "bcdefghi"):
+        bomb += f"{q}: &{q} [*{p_},*{p_},*{p_},*{p_},*{p_},*{p_},*{p_},*{p_},*{p_}]\n"
+    cases = {
+        "alias bomb": (bomb, r"bomb\.yaml:\d+:\d+: the configuration expands to more than 100000 nodes"),
+        "duplicate key": ("name: a\noutput: b\nname: c\n", r"duplicate_key\.yaml:3:1: the key 'name' is given twice"),
+        "nested duplicate key": ("datasets:\n  - {name: a, name: b}\n", r"nested_duplicate_key\.yaml:2:\d+: the key 'name' is given twice"),
+        "2 MB config": ("# " + "x" * (2 << 20) + "\n", r"larger than 1048576 bytes"),
+        "deep nesting": ("a: " + "[" * 100000 + "]" * 100000 + "\n", r"nested too deeply"),
+        "binary garbage": (bytes(range(1, 256)).decode("latin-1") * 10, r"\.yaml:\d+:\d+: "),
+        "unknown key": ("name: a\nbogus: 1\n", r"unknown_key\.yaml:2:1: unknown key 'bogus'"),
+        "wrong type": ("name: a\nrepeats: [1, 2]\ndatasets: []\n", r"wrong_type\.yaml:2:\d+: "),
+    }
+    for name, (text, pattern) in cases.items():
+        f = os.path.join(d, name.replace(" ", "_").replace("2_MB", "big") + ".yaml")
+        with open(f, "w", encoding="latin-1") as fh:
+            fh.write(text)
+        t0 = time.time()
+        r = run(["/usr/bin/time", "-f", "peak %M KB", args.vobench, "run", f, "--dry-run"])
+        peak = re.search(r"peak (\d+) KB", r.stderr)
+        peak_kb = int(peak.group(1)) if peak else 0
+        ok = r.returncode != 0 and re.search(pattern, r.stderr) is not None and peak_kb < 200 * 1024
+        check(f"configs: {name} refused with file:line:column ({peak_kb // 1024} MB, {time.time() - t0:.2f} s)", ok,
+              f"exit {r.returncode}: {r.stderr[-400:]}")
+
+
+# ----- results folders -----------------------------------------------------------------------------------
+
+def results_faults(args, w):
+    src = os.path.join(w, "vo_clean")
+    cfg = os.path.join(w, "vo_clean.yaml")
+    ids = sorted(i for i in os.listdir(os.path.join(src, "runs")) if not i.startswith("."))
+
+    def fresh(name):
+        d = os.path.join(w, "results", name)
+        shutil.rmtree(d, ignore_errors=True)
+        shutil.copytree(src, d, ignore=shutil.ignore_patterns(".vobench.lock"))
+        return d
+
+    def report(d):
+        return run([args.vobench, "report", d])
+
+    def run_json(d, i):
+        return os.path.join(d, "runs", i, "run.json")
+
+    # A truncated run.json: listed by the report (exit 2), re-run by --resume, then identical.
+    d = fresh("truncated")
+    text = open(run_json(d, ids[0])).read()
+    write(run_json(d, ids[0]), text[: len(text) // 2])
+    r = report(d)
+    check("results: a truncated run.json is listed and the report exits 2", r.returncode == 2 and ids[0] in r.stdout and "INCOMPLETE" in r.stdout,
+          f"exit {r.returncode}: {r.stdout[-500:]}")
+    r = run([args.vobench, "run", cfg, "--out", d, "--resume"])
+    again = load_json(run_json(d, ids[0]))
+    check("results: --resume runs the corrupt cell again; then complete and identical", r.returncode == 0 and again["metrics"] == load_json(run_json(src, ids[0]))["metrics"]
+          and os.path.isdir(os.path.join(d, "corrupt")), f"exit {r.returncode}: {r.stderr[-800:]}")
+
+    # Hostile strings inside a record reach every writer.
+    d = fresh("hostile_record")
+    j = load_json(run_json(d, ids[0]))
+    j["cell"]["sequence"] = HOSTILE
+    j["cell"]["algorithm"] = HOSTILE
+    j["reason"] = HOSTILE
+    write(run_json(d, ids[0]), json.dumps(j))
+    cwd = os.getcwd()
+    os.chdir(d)
+    r = report(d)
+    os.chdir(cwd)
+    check("results: a record with hostile names is reported (exit 0)", r.returncode == 0, r.stderr[-800:])
+    hostile_outputs(d, "results (hostile names in run.json)")
+
+    # Stored metrics that do not match the trajectory.
+    d = fresh("tampered")
+    j = load_json(run_json(d, ids[0]))
+    j["metrics"]["ate.rmse"] = 1e-9
+    write(run_json(d, ids[0]), json.dumps(j))
+    r = report(d)
+    check("results: a tampered metric is caught ('run.json says …, its trajectory gives …', exit 2)",
+          r.returncode == 2 and "run.json says ate.rmse" in r.stdout, r.stdout[-600:])
+
+    d = fresh("short_trajectory")
+    t = os.path.join(d, "runs", ids[0], "trajectory.txt")
+    lines = open(t).read().splitlines()
+    write(t, "\n".join(lines[:-5]) + "\n")
+    r = report(d)
+    check("results: a trajectory shorter than its record is caught (exit 2)", r.returncode == 2 and "poses, run.json says" in r.stdout, r.stdout[-600:])
+
+    d = fresh("missing_cell")
+    shutil.rmtree(os.path.join(d, "runs", ids[0]))
+    r = report(d)
+    check("results: a cell of cells.json without a record is listed as missing (exit 2)", r.returncode == 2 and "missing" in r.stdout, r.stdout[-600:])
+
+    d = fresh("schema")
+    j = load_json(run_json(d, ids[0]))
+    j["schema_version"] = 99
+    write(run_json(d, ids[0]), json.dumps(j))
+    r = report(d)
+    check("results: an unknown schema_version is refused (exit 2)", r.returncode == 2 and "schema_version" in r.stdout, r.stdout[-600:])
+
+    d = fresh("wrong_id")
+    os.rename(os.path.join(d, "runs", ids[0]), os.path.join(d, "runs", "0000000000000000"))
+    r = report(d)
+    check("results: a record in another cell's folder is refused (exit 2)", r.returncode == 2 and "does not describe cell" in r.stdout, r.stdout[-600:])
+
+    d = fresh("bad_sweep_json")
+    write(os.path.join(d, "sweep.json"), json.dumps({"name": 7, "rank_by": "no.such", "criteria": [{"criterion": "$(rm -rf /)"}]}))
+    r = report(d)
+    check("results: a sweep.json of wrong types makes the report use its defaults (exit 0, warned)", r.returncode == 0 and "defaults" in r.stderr,
+          f"exit {r.returncode}: {r.stderr[-500:]}")
+
+    d = fresh("not_json")
+    open(run_json(d, ids[1]), "wb").write(b"\xff\xfe\x00garbage" * 100)
+    r = report(d)
+    check("results: a binary run.json is listed, the rest reported (exit 2)", r.returncode == 2 and ids[1] in r.stdout, r.stdout[-600:])
+
+
+# ----- one writer per folder, listing, info, check, track ---------------------------------------------
+
+def lock_and_cli(args, w):
+    slow = config(os.path.join(w, "slow.yaml"), "slow", os.path.join(w, "slow"),
+                  [{"name": "corpus", "reader": os.path.join(args.plugins, "corpus_reader_healthy.so"), "path": os.path.join(w, "empty_sequence")}],
+                  [{"name": "hang", "plugin": os.path.join(args.plugins, "corpus_vo_hang_in_destroy.so")}])
+    first = subprocess.Popen([args.vobench, "run", slow], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    deadline = time.time() + 20
+    while time.time() < deadline and not cell_processes():
+        time.sleep(0.05)
+    second = run([args.vobench, "run", slow, "--resume"])
+    third = run([args.vobench, "report", os.path.join(w, "slow")])
+    check("lock: a second run on a folder in use is refused at once, naming the holder's pid",
+          second.returncode != 0 and f"pid {first.pid}" in second.stderr, second.stderr[-400:])
+    check("lock: so is a report on it", third.returncode != 0 and "being written by another vobench" in third.stderr, third.stderr[-400:])
+    first.wait(timeout=60)
+    check("lock: the first run finishes its cell (exit 0)", first.returncode == 0, first.returncode)
+
+    env = {"VOBENCH_PLUGIN_PATH": args.plugins}
+    t0 = time.time()
+    r = run([args.vobench, "plugins", "list", "--json"], env=env)
+    try:
+        listed = json.loads(r.stdout)
+    except ValueError:
+        listed = None
+    names = {p["name"] for p in listed} if listed else set()
+    check(f"list: `plugins list --json` over crashing, hanging, noisy and non-UTF-8 plugins is valid JSON ({time.time() - t0:.1f} s)",
+          r.returncode == 0 and listed is not None and {"corpus_vo", "corpus_reader"} <= names, r.stdout[:300] + r.stderr[-300:])
+    check("list: the crashing and hanging entries are refused with their reason",
+          "killed by signal 11" in r.stderr and "did not finish within" in r.stderr, r.stderr[-600:])
+    for fault in ("ctor_stdout", "bad_utf8_strings"):
+        r = run([args.vobench, "plugins", "info", os.path.join(args.plugins, f"corpus_vo_{fault}.so"), "--json"])
+        try:
+            json.loads(r.stdout)
+            ok = r.returncode == 0
+        except ValueError:
+            ok = False
+        check(f"info: `plugins info --json` of {fault} is valid JSON", ok, r.stdout[:300])
+    r = run([args.vobench, "track", "--dataset", os.path.join(args.plugins, "corpus_reader_healthy.so"), "--path", w,
+             "--algorithm", os.path.join(args.plugins, "corpus_vo_ctor_stdout.so"), "--out", os.path.join(w, "track_out"), "--json"])
+    try:
+        json.loads(r.stdout)
+        ok = r.returncode == 0
+    except ValueError:
+        ok = False
+    check("track: a plugin that prints to stdout leaves `track --json` valid JSON", ok, r.stdout[:300])
+    # An error status that comes with a message is conformant (bad_utf8_error: its bytes are printed cleaned).
+    for fault, pattern in {"exit0": r"ended \(exited with code 0\) inside a plugin call", "null_last_error": r"empty last_error",
+                           "bad_utf8_error": "\ufffd", "entry_crash": r"killed by signal 11", "fork_child": r"."}.items():
+        r = run([args.vobench, "plugins", "check", "--timeout", "10", os.path.join(args.plugins, f"corpus_vo_{fault}.so")])
+        last = r.stdout.strip().splitlines()[-1] if r.stdout.strip() else ""
+        want_fail = fault not in ("fork_child", "bad_utf8_error")
+        ok = (r.returncode == 1) == want_fail and re.search(pattern, r.stdout) and re.match(r"^(PASS|FAIL) ", last)
+        check(f"check: `plugins check` on {fault} {'fails' if want_fail else 'runs'}, with a final PASS/FAIL line", bool(ok),
+              f"exit {r.returncode}: {r.stdout[-500:]}")
+    check("cli: no process of any cell or probe outlives it", not cell_processes(), cell_processes())
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--vobench", required=True)
+    ap.add_argument("--plugins", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--constant-pose", required=True)
+    ap.add_argument("--tum", required=True)
+    ap.add_argument("--only", default="")
+    args = ap.parse_args()
+    shutil.rmtree(args.work, ignore_errors=True)
+    os.makedirs(args.work)
+    os.chdir(args.work)
+    # A private probe cache, and short probe timeouts for the hanging entry.
+    os.environ["VOBENCH_PROBE_CACHE"] = os.path.join(args.work, "probe-cache")
+    os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
+    t0 = time.time()
+    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, lock_and_cli):
+        if args.only and args.only not in section.__name__:
+            continue
+        section(args, args.work)
+    print(f"corpus: {time.time() - t0:.1f} s")
+    print(f"{passed} passed, {failed} failed")
+    return 0 if failed == 0 else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
