@@ -75,7 +75,9 @@ std::string clean_text(std::string_view text, bool keep_newlines) {
 }
 
 std::string gnuplot_quoted(std::string_view text) {
-    return "'" + map_clean(text, [](std::string& out, char c) { out += c == '\'' ? std::string("''") : std::string(1, c); }) + "'";
+    // gnuplot's '' escape is not reliable (four quotes in a row break its scanner), so a title's
+    // apostrophe is shown as U+2019 and the literal holds no quote at all.
+    return "'" + map_clean(text, [](std::string& out, char c) { out += c == '\'' ? std::string("\xE2\x80\x99") : std::string(1, c); }) + "'";
 }
 
 std::string markdown_text(std::string_view text) {

@@ -16,8 +16,9 @@ namespace vobench {
 // name read backwards) become U+FFFD too unless `keep_newlines` (then \n and \t stay).
 std::string clean_text(std::string_view text, bool keep_newlines = false);
 
-// A gnuplot single-quoted string literal, quotes included. gnuplot has no escapes inside '…' except
-// '' for a quote, so the newline that would end the statement is replaced, not escaped.
+// A gnuplot single-quoted string literal, quotes included. Nothing inside '…' is interpreted by
+// gnuplot (no backquote, macro or backslash expansion); the newline that would end the statement is
+// replaced, and an apostrophe is shown as U+2019 (gnuplot's '' escape is not reliable).
 std::string gnuplot_quoted(std::string_view text);
 
 // A Markdown table cell or heading text: | \ ` * _ [ ] < > # and friends backslash-escaped (so no
