@@ -19,11 +19,11 @@ TEST_CASE("vobench track writes trajectory.txt, timing.csv and a JSON summary", 
     REQUIRE(test::run_command(cmd, stdout_text) == 0);
     const auto j = nlohmann::json::parse(stdout_text);
     CHECK(j["frames"] == 9);
-    CHECK(j["failed_frames"] == 0);
-    CHECK(j["ms_per_frame"].get<double>() >= 0.0);
-    CHECK(j["ate_rmse"].is_number());
-    CHECK(j["rpe_trans_rmse"].is_number());
-    CHECK(j["rpe_rot_deg_rmse"].is_number());
+    CHECK(j["metrics"]["lost_frames"] == 0);
+    CHECK(j["metrics"]["ms_per_frame"].get<double>() >= 0.0);
+    CHECK(j["metrics"]["ate.rmse"].is_number());
+    CHECK(j["metrics"]["rpe.trans.rmse"].is_number());
+    CHECK(j["metrics"]["rpe.rot.rmse"].is_number());
     CHECK(j["protocol"]["rpe"]["delta"] == 4.0);
 
     const auto traj = metrics::read_trajectory(out.path() / "trajectory.txt");

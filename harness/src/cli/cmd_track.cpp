@@ -1,5 +1,6 @@
 // vobench track — one odometry plugin on one sequence.
 #include "cli/commands.hpp"
+#include "metrics/metric_catalog.hpp"
 #include "cli/protocol_options.hpp"
 #include "run/track.hpp"
 #include "util/files.hpp"
@@ -44,23 +45,16 @@ void add_track_command(CLI::App& app, int& exit_code) {
             spdlog::info("wrote {}/trajectory.txt and timing.csv", out);
         }
         const double ms = r.mean_ms();
-        nlohmann::json j{{"frames", r.frames.size()},
-                         {"failed_frames", r.failed_frames},
-                         {"ms_per_frame", ms},
-                         {"fps", ms > 0 ? 1000.0 / ms : 0.0},
-                         {"ate_rmse", nullptr},
-                         {"rpe_trans_rmse", nullptr},
-                         {"rpe_rot_deg_rmse", nullptr}};
+        // The metrics under the catalogue's names, as in run.json and the leaderboard.
+        nlohmann::json metric_values{{"lost_frames", r.failed_frames}, {"failed_frames", r.failed_frames}, {"ms_per_frame", ms}, {"fps", ms > 0 ? 1000.0 / ms : 0.0}};
+        nlohmann::json j{{"frames", r.frames.size()}, {"metrics", nullptr}};
         if (r.evaluation) {
-            if (r.evaluation->ate) j["ate_rmse"] = r.evaluation->ate->stats.rmse;
-            if (r.evaluation->rpe) {
-                j["rpe_trans_rmse"] = r.evaluation->rpe->trans.rmse;
-                j["rpe_rot_deg_rmse"] = r.evaluation->rpe->rot_deg.rmse;
-            }
+            for (const auto& [name, value] : metrics::flatten(*r.evaluation)) metric_values[name] = value;
             j["protocol"] = metrics::protocol_json(r.evaluation->protocol);
         } else {
             spdlog::warn("no evaluation: {}", r.evaluation_error);
         }
+        j["metrics"] = metric_values;
         if (!r.error.empty()) j["error"] = r.error;
         if (json) {
             std::cout << json_text(j) << std::endl;

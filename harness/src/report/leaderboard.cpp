@@ -1,5 +1,6 @@
 #include "report/leaderboard.hpp"
 
+#include "metrics/metric_catalog.hpp"
 #include "report/bootstrap.hpp"
 #include "sweep/host_info.hpp"
 
@@ -10,7 +11,10 @@ namespace vobench {
 
 namespace {
 
-bool is_count(const std::string& metric) { return metric == "lost_frames" || metric == "failed_frames" || metric == "failed_cells"; }
+bool is_count(const std::string& metric) {
+    const metrics::MetricInfo* m = metrics::find_metric(metric);
+    return m && m->combine == metrics::Combine::sum;
+}
 
 nlohmann::json metrics_json(const MetricMap& m) {
     nlohmann::json j = nlohmann::json::object();
@@ -23,9 +27,9 @@ nlohmann::json within_gt_error(const RunRecord& r) {
     nlohmann::json list = nlohmann::json::array();
     const auto& acc = r.cell.gt_accuracy;
     for (const auto& [k, v] : r.metrics) {
-        const bool rot = k.rfind("rpe.rot.", 0) == 0;
-        const bool pos = k.rfind("ate.", 0) == 0 || k.rfind("rpe.trans.", 0) == 0;
-        const double sigma = rot ? acc.rotation_deg : pos ? acc.position_m : 0.0;
+        const metrics::MetricInfo* m = metrics::find_metric(k);
+        const metrics::GtAccuracy kind = m ? m->accuracy : metrics::GtAccuracy::none;
+        const double sigma = kind == metrics::GtAccuracy::rotation ? acc.rotation_deg : kind == metrics::GtAccuracy::position ? acc.position_m : 0.0;
         if (sigma > 0 && v <= sigma) list.push_back(k);
     }
     return list;
@@ -33,7 +37,10 @@ nlohmann::json within_gt_error(const RunRecord& r) {
 
 }  // namespace
 
-bool higher_is_better(const std::string& metric) { return metric == "fps"; }
+bool higher_is_better(const std::string& metric) {
+    const metrics::MetricInfo* m = metrics::find_metric(metric);
+    return m && m->better == metrics::Better::higher;
+}
 
 std::optional<double> criterion_value(const std::vector<const RunRecord*>& cells, const std::string& metric) {
     if (metric == "failed_cells")

@@ -32,32 +32,11 @@ std::optional<metrics::Evaluation> evaluate_run(const fs::path& dir, const metri
     }
 }
 
-MetricMap flatten(const metrics::Evaluation& e) {
-    MetricMap m;
-    if (e.ate) {
-        const auto& s = e.ate->stats;
-        m["ate.rmse"] = s.rmse;
-        m["ate.mean"] = s.mean;
-        m["ate.median"] = s.median;
-        m["ate.std"] = s.std;
-        m["ate.max"] = s.max;
-    }
-    if (e.rpe) {
-        m["rpe.trans.rmse"] = e.rpe->trans.rmse;
-        m["rpe.trans.mean"] = e.rpe->trans.mean;
-        m["rpe.trans.median"] = e.rpe->trans.median;
-        m["rpe.rot.rmse"] = e.rpe->rot_deg.rmse;
-        m["rpe.rot.mean"] = e.rpe->rot_deg.mean;
-        m["rpe.rot.median"] = e.rpe->rot_deg.median;
-    }
-    return m;
-}
-
 MetricMap evaluate_run_files(const fs::path& dir, const metrics::Protocol& protocol, std::string& error, nlohmann::json* full) {
     const auto e = evaluate_run(dir, protocol, error);
     if (!e) return {};
     if (full) *full = metrics::evaluation_json(*e);
-    return flatten(*e);
+    return metrics::flatten(*e);
 }
 
 namespace {
@@ -108,7 +87,7 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
             if (r.cell.gt_accuracy.position_m < 0) r.cell.gt_accuracy.position_m = seq.value("gt_position_sigma_m", -1.0);
             if (r.cell.gt_accuracy.rotation_deg < 0) r.cell.gt_accuracy.rotation_deg = seq.value("gt_rotation_sigma_deg", -1.0);
             r.evaluation = evaluate_run(r.dir, r.cell.protocol, r.evaluation_error);
-            if (r.evaluation) r.metrics = flatten(*r.evaluation);
+            if (r.evaluation) r.metrics = metrics::flatten(*r.evaluation);
             const nlohmann::json& t = r.run.at("timing");
             if (t.value("frames", 0) > 0) {
                 r.metrics["ms_per_frame"] = t.at("mean_ms");

@@ -4,6 +4,7 @@
 #pragma once
 
 #include "metrics/evaluation.hpp"
+#include "metrics/metric_catalog.hpp"
 #include "sweep/cell.hpp"
 
 #include <nlohmann/json.hpp>
@@ -16,8 +17,7 @@
 
 namespace vobench {
 
-// Flat metric names (as in known_metric_names()): "ate.rmse", "rpe.trans.rmse", "rpe.rot.rmse" (°) …
-using MetricMap = std::map<std::string, double>;
+using metrics::MetricMap;  // by catalogue name (metrics/metric_catalog.hpp)
 
 struct RunRecord {
     std::filesystem::path dir;
@@ -36,7 +36,6 @@ struct RunRecord {
 // ATE/RPE of `dir`/trajectory.txt against `dir`/groundtruth.txt. On failure returns nullopt and
 // sets `error`.
 std::optional<metrics::Evaluation> evaluate_run(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error);
-MetricMap flatten(const metrics::Evaluation& evaluation);
 
 // Both of the above: the flat metrics ({} on failure), `full` (optional) the evaluation JSON.
 MetricMap evaluate_run_files(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error,

@@ -1,5 +1,6 @@
 #include "report/tables.hpp"
 
+#include "metrics/metric_catalog.hpp"
 #include "util/escape.hpp"
 
 #include <fmt/format.h>
@@ -10,21 +11,20 @@ namespace vobench {
 
 namespace {
 
+// The columns of Table 5 (Kraft et al. 2016); units and ground-truth comparison from the catalogue.
 struct Column {
     const char* metric;
     const char* title;
     int decimals;
-    bool rotation;  // compared with the ground truth's rotation accuracy, else its position accuracy
 };
-const Column kAccuracy[] = {{"ate.rmse", "ATE RMSE [m]", 4, false},
-                            {"ate.std", "ATE std [m]", 4, false},
-                            {"rpe.trans.rmse", "RPE RMSE [m]", 4, false},
-                            {"rpe.rot.rmse", "RPE RMSE [°]", 3, true}};
+const Column kAccuracy[] = {{"ate.rmse", "ATE RMSE [m]", 4}, {"ate.std", "ATE std [m]", 4}, {"rpe.trans.rmse", "RPE RMSE [m]", 4}, {"rpe.rot.rmse", "RPE RMSE [°]", 3}};
 
 double gt_sigma(const RunGroup* g, const Column& c) {
     if (!g || g->runs.empty()) return 0;
     const auto& acc = g->runs.front()->cell.gt_accuracy;
-    return c.rotation ? acc.rotation_deg : acc.position_m;
+    const metrics::MetricInfo* m = metrics::find_metric(c.metric);
+    if (!m || m->accuracy == metrics::GtAccuracy::none) return 0;
+    return m->accuracy == metrics::GtAccuracy::rotation ? acc.rotation_deg : acc.position_m;
 }
 
 std::string opt(const std::optional<double>& v, int decimals) { return v ? fmt::format("{:.{}f}", *v, decimals) : "–"; }

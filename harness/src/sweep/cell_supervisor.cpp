@@ -12,6 +12,7 @@
 #include "report/run_record.hpp"
 #include "sweep/cell_runner.hpp"
 #include "sweep/host_info.hpp"
+#include "util/escape.hpp"
 #include "util/files.hpp"
 #include "util/subprocess.hpp"
 
@@ -102,6 +103,33 @@ uint64_t unsigned_field(const nlohmann::json& j, const char* key) {
     return j.is_object() && j.contains(key) && j[key].is_number_unsigned() ? j[key].get<uint64_t>() : 0;
 }
 
+// Only the fields the report reads, each of its type (the child's files may have been rewritten by
+// plugin code): strings cleaned, numbers finite; anything else left out.
+nlohmann::json well_typed(const nlohmann::json& from, const std::vector<std::pair<const char*, char>>& fields) {
+    nlohmann::json out = nlohmann::json::object();
+    if (!from.is_object()) return out;
+    for (const auto& [key, type] : fields) {
+        if (!from.contains(key)) continue;
+        const nlohmann::json& v = from[key];
+        if (type == 's' && v.is_string()) out[key] = clean_text(v.get<std::string>());
+        if (type == 'u' && v.is_number_unsigned()) out[key] = v;
+        if (type == 'n' && v.is_number() && std::isfinite(v.get<double>())) out[key] = v;
+    }
+    return out;
+}
+
+nlohmann::json sequence_fields(const nlohmann::json& s) {
+    nlohmann::json out = well_typed(s, {{"name", 's'}, {"sensor", 's'}, {"frame_count", 'u'}, {"frames_to_run", 'u'}, {"gt_count", 'u'},
+                                        {"gt_position_sigma_m", 'n'}, {"gt_rotation_sigma_deg", 'n'}});
+    if (s.is_object() && s.contains("camera"))
+        out["camera"] = well_typed(s["camera"], {{"width", 'n'}, {"height", 'n'}, {"fx", 'n'}, {"fy", 'n'}, {"cx", 'n'}, {"cy", 'n'}});
+    return out;
+}
+
+nlohmann::json plugin_fields(const nlohmann::json& p) {
+    return well_typed(p, {{"name", 's'}, {"version", 's'}, {"license", 's'}, {"abi_version", 'u'}, {"api_version", 'u'}, {"file", 's'}});
+}
+
 // Why the cell is not a success, or "" when it is. Checked in the order a user would want to read.
 std::string verdict(bool ran, const std::string& not_run_reason, const ChildResult& child, const ChildReport& report, const FrameStream& frames,
                     const nlohmann::json& sequence, const std::string& plugin, int64_t required) {
@@ -109,6 +137,7 @@ std::string verdict(bool ran, const std::string& not_run_reason, const ChildResu
     if (!ran) return not_run_reason;
     if (child.signal_blame != 0)
         return fmt::format("a process of the cell sent {} to the harness at frame {} (cell killed)", signal_name(child.signal_blame), got);
+    if (child.log_exceeded) return fmt::format("{} at frame {}", child.describe(), got);
     if (!(child.exited && child.exit_code == 0)) {
         if (report.present) return fmt::format("{} after the last frame (while shutting down)", child.describe());
         return fmt::format("{} at frame {}", child.describe(), got);
@@ -166,10 +195,10 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     const FrameStream frames = decode_frames(work / "frames.jsonl");
     const nlohmann::json result = read_json_or_null(work / "result.json", 1 << 20);
     // Absent when the child died before the sequence opened: empty objects, never null.
-    nlohmann::json sequence = read_json_or_null(work / "sequence.json", 1 << 20), plugin = read_json_or_null(work / "plugin.json", 1 << 20);
-    const bool described = sequence.is_object();
-    if (!described) sequence = nlohmann::json::object();
-    if (!plugin.is_object()) plugin = nlohmann::json::object();
+    const nlohmann::json sequence_file = read_json_or_null(work / "sequence.json", 1 << 20);
+    const bool described = sequence_file.is_object();
+    const nlohmann::json sequence = sequence_fields(sequence_file);
+    const nlohmann::json plugin = plugin_fields(read_json_or_null(work / "plugin.json", 1 << 20));
 
     CellOutcome o;
     o.id = cell.id;

@@ -1,5 +1,6 @@
 #include "sweep/sweep_config.hpp"
 
+#include "metrics/metric_catalog.hpp"
 #include "synth/trajectory_families.hpp"
 
 #include <cmath>
@@ -271,10 +272,7 @@ std::vector<DatasetSpec::Folder> DatasetSpec::folders() const {
 }
 
 const std::vector<std::string>& known_metric_names() {
-    static const std::vector<std::string> names{
-        "ate.rmse",       "ate.mean",      "ate.median",    "ate.std",     "ate.max",      "rpe.trans.rmse",
-        "rpe.trans.mean", "rpe.trans.median", "rpe.rot.rmse", "rpe.rot.mean", "rpe.rot.median", "lost_frames",
-        "failed_frames", "failed_cells", "ms_per_frame", "fps"};
+    static const std::vector<std::string> names = metrics::metric_names();
     return names;
 }
 

@@ -29,7 +29,8 @@ std::string signal_name(int signal) {
 std::string ChildResult::describe() const {
     if (cancelled) return "cancelled (killed)";
     if (signal_blame != 0) return "sent " + signal_name(signal_blame) + " to the harness (killed)";
-    if (log_exceeded) return "wrote more than the log limit to stdout/stderr (killed)";
+    if (log_exceeded)
+        return "wrote more than the log limit of " + std::to_string(max_log_bytes >> 20) + " MB to stdout/stderr" + (exited ? "" : " (killed)");
     if (timed_out) return "timed out after " + std::to_string(timeout_s) + " s (killed)";
     if (memory_exceeded) return "exceeded the memory limit of " + std::to_string(memory_mb) + " MB (killed)";
     if (exited) return "exited with code " + std::to_string(exit_code);
@@ -224,6 +225,7 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     ChildResult result;
     result.timeout_s = limits.timeout_s;
     result.memory_mb = limits.memory_mb;
+    result.max_log_bytes = limits.max_log_bytes;
     const auto deadline = start + std::chrono::seconds(limits.timeout_s);
     int status = 0;
     std::vector<ProcEntry> members;
@@ -258,6 +260,11 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
     decode_status(status, result);
+    // A burst between two checks: the limit holds at the end too.
+    if (!result.log_exceeded && limits.max_log_bytes > 0 && !limits.log.empty()) {
+        std::error_code ec;
+        result.log_exceeded = fs::file_size(limits.log, ec) > limits.max_log_bytes && !ec;
+    }
     if (limits.contain) {
         const bool killed_by_us = result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded;
         ::kill(-pid, SIGKILL);

@@ -48,6 +48,7 @@ struct ChildResult {
     double wall_s = 0;
     int timeout_s = 0;
     uint64_t memory_mb = 0;
+    uint64_t max_log_bytes = 0;
     std::string output;       // run_self only: stdout and stderr, interleaved
     // "exited with code 3", "killed by signal 11 (SIGSEGV)", "timed out after 120 s",
     // "exceeded the memory limit of 512 MB" ...
