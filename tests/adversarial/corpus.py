@@ -516,6 +516,37 @@ def lock_and_cli(args, w):
     check("cli: no process of any cell or probe outlives it", not cell_processes(), cell_processes())
 
 
+def schemas(args, w):
+    """Every run.json the corpus produced, healthy and failed, and every leaderboard, against its schema."""
+    try:
+        import jsonschema
+    except ImportError:
+        print("skip  schemas: python3-jsonschema is not installed (make test installs it)")
+        return
+    source = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+    run_schema = load_json(os.path.join(source, "schemas", "run.schema.json"))
+    board_schema = load_json(os.path.join(source, "schemas", "leaderboard.schema.json"))
+    runs, boards, bad = 0, 0, []
+    for sweep_out in ("vo_faults", "vo_clean", "reader_faults", "data_faults"):
+        out = os.path.join(w, sweep_out)
+        if not os.path.isdir(out):
+            continue
+        for cell in os.listdir(os.path.join(out, "runs")):
+            p = os.path.join(out, "runs", cell, "run.json")
+            if os.path.exists(p):
+                runs += 1
+                try:
+                    jsonschema.validate(load_json(p), run_schema)
+                except jsonschema.ValidationError as e:
+                    bad.append(f"{p}: {e.message}")
+        boards += 1
+        try:
+            jsonschema.validate(load_json(os.path.join(out, "leaderboard.json")), board_schema)
+        except jsonschema.ValidationError as e:
+            bad.append(f"{out}/leaderboard.json: {e.message}")
+    check(f"schemas: {runs} run.json (ok and failed rows) and {boards} leaderboards validate against schemas/", runs > 50 and not bad, bad[:5])
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--vobench", required=True)
@@ -532,7 +563,7 @@ def main():
     os.environ["VOBENCH_PROBE_CACHE"] = os.path.join(args.work, "probe-cache")
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
-    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, lock_and_cli):
+    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)

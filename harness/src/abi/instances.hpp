@@ -6,6 +6,7 @@
 #pragma once
 
 #include "abi/host_context.hpp"
+#include "abi/params.hpp"
 #include "abi/plugin_library.hpp"
 
 #include <map>
@@ -25,7 +26,6 @@ private:
     vobench_status status_;
 };
 
-using ParamMap = std::map<std::string, std::string>;
 
 // Checks names, types and ranges against the plugin's table; throws std::invalid_argument naming the
 // plugin and parameter.

@@ -2,7 +2,7 @@
 // sequence from one sensor, over its repeats; mean ± std of each metric over the successful repeats.
 #pragma once
 
-#include "report/run_record.hpp"
+#include "record/run_record.hpp"
 
 #include <optional>
 #include <string>

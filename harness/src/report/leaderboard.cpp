@@ -2,7 +2,7 @@
 
 #include "metrics/metric_catalog.hpp"
 #include "report/bootstrap.hpp"
-#include "sweep/host_info.hpp"
+#include "record/host_info.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,7 +18,8 @@ bool is_count(const std::string& metric) {
 
 nlohmann::json metrics_json(const MetricMap& m) {
     nlohmann::json j = nlohmann::json::object();
-    for (const auto& [k, v] : m) j[k] = v;
+    for (const auto& [k, v] : m)
+        if (std::isfinite(v)) j[k] = v;  // JSON has no NaN or infinity (load_runs keeps none; this is the last guard)
     return j;
 }
 
@@ -114,7 +115,7 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
             }
         }
         nlohmann::json aggregate = nlohmann::json::object();
-        for (const std::string& metric : known_metric_names()) {
+        for (const std::string& metric : metrics::metric_names()) {
             if (is_count(metric)) {
                 if (auto v = criterion_value(cells, metric)) aggregate[metric] = {{"sum", *v}, {"n", cells.size()}};
                 continue;

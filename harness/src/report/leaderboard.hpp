@@ -8,7 +8,7 @@
 #pragma once
 
 #include "report/aggregate.hpp"
-#include "sweep/sweep_config.hpp"
+#include "record/criterion.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,14 +1,15 @@
 #include "report/report_writer.hpp"
 
+#include "metrics/metric_catalog.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "util/escape.hpp"
 #include "report/aggregate.hpp"
 #include "report/figures.hpp"
 #include "report/html_report.hpp"
 #include "report/leaderboard.hpp"
-#include "report/run_record.hpp"
+#include "record/run_record.hpp"
 #include "report/tables.hpp"
-#include "sweep/host_info.hpp"
+#include "record/host_info.hpp"
 #include "util/files.hpp"
 
 #include <fmt/format.h>
@@ -19,13 +20,6 @@
 
 namespace vobench {
 namespace fs = std::filesystem;
-
-nlohmann::json sweep_record(const SweepConfig& c) {
-    nlohmann::json criteria = nlohmann::json::array();
-    for (const Criterion& k : c.criteria) criteria.push_back({{"criterion", k.text}, {"required", k.required}});
-    return {{"name", c.name}, {"config_file", c.file.string()}, {"rank_by", c.rank_by}, {"criteria", criteria},
-            {"protocol", metrics::protocol_json(c.protocol)}, {"config", c.source}};
-}
 
 namespace {
 
@@ -62,8 +56,7 @@ ReportResult write_report(const fs::path& out) {
     const auto read_settings = [&](const nlohmann::json& s) {
         ctx.name = clean_text(s.value("name", out.filename().string()));
         ctx.rank_by = s.value("rank_by", std::string("ate.rmse"));
-        const auto& names = known_metric_names();
-        if (std::find(names.begin(), names.end(), ctx.rank_by) == names.end()) throw std::invalid_argument("unknown rank_by metric");
+        if (metrics::find_metric(ctx.rank_by) == nullptr) throw std::invalid_argument("unknown rank_by metric");
         lctx.protocol = s.contains("protocol") ? s["protocol"] : default_protocol;
         metrics::protocol_from_json(lctx.protocol);
         lctx.criteria.clear();

@@ -4,7 +4,6 @@
 // name, ranking metric and criteria; without it the defaults apply.
 #pragma once
 
-#include "sweep/sweep_config.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -19,9 +18,6 @@ struct ReportResult {
     std::vector<std::string> failed_required;  // "entry: criterion" for each required criterion not met
     std::vector<std::string> problems;         // cells missing or unsound (load_runs): the report is incomplete
 };
-
-// The part of a config the report needs, kept in <out>/sweep.json.
-nlohmann::json sweep_record(const SweepConfig& config);
 
 // Throws std::runtime_error when there is no sound record at all.
 ReportResult write_report(const std::filesystem::path& out);

@@ -2,7 +2,7 @@
 
 #include "record/results_dir.hpp"
 #include "sweep/cell_runner.hpp"
-#include "sweep/host_info.hpp"
+#include "record/host_info.hpp"
 #include "util/subprocess.hpp"
 
 #include <fmt/format.h>

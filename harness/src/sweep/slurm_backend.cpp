@@ -2,7 +2,7 @@
 
 #include "metrics/trajectory_io.hpp"
 #include "sweep/cell_runner.hpp"
-#include "sweep/host_info.hpp"
+#include "record/host_info.hpp"
 #include "util/subprocess.hpp"
 #include "util/files.hpp"
 

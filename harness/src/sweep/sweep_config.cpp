@@ -291,23 +291,11 @@ std::string expand_env(const std::string& text) {
     return out;
 }
 
-Criterion parse_criterion(const std::string& text) {
-    static const std::regex form(R"(^\s*([a-z_.]+)\s*(<=|>=|==|<|>)\s*([-+0-9.eE]+)\s*$)");
-    std::smatch m;
-    if (!std::regex_match(text, m, form)) throw std::invalid_argument("criterion '" + text + "' is not of the form 'metric <= number'");
-    const auto& names = known_metric_names();
-    if (std::find(names.begin(), names.end(), m[1].str()) == names.end())
-        throw std::invalid_argument("criterion '" + text + "': unknown metric '" + m[1].str() + "'");
-    Criterion c;
-    c.metric = m[1];
-    c.op = m[2];
-    try {
-        c.value = std::stod(m[3]);
-    } catch (const std::exception&) {
-        throw std::invalid_argument("criterion '" + text + "': '" + m[3].str() + "' is not a number");
-    }
-    c.text = text;
-    return c;
+nlohmann::json sweep_record(const SweepConfig& c) {
+    nlohmann::json criteria = nlohmann::json::array();
+    for (const Criterion& k : c.criteria) criteria.push_back({{"criterion", k.text}, {"required", k.required}});
+    return {{"name", c.name}, {"config_file", c.file.string()}, {"rank_by", c.rank_by}, {"criteria", criteria},
+            {"protocol", metrics::protocol_json(c.protocol)}, {"config", c.source}};
 }
 
 SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& registry, bool check_paths) {

@@ -9,6 +9,8 @@
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
 #include "metrics/evaluation.hpp"
+#include "record/cell.hpp"
+#include "record/criterion.hpp"
 #include "sweep/yaml_reader.hpp"
 
 #include <nlohmann/json.hpp>
@@ -29,13 +31,6 @@ struct SyntheticSpec {
     uint64_t frames = 50;
     uint64_t seed = 1;
     std::filesystem::path cache = "datasets/synthetic";
-};
-
-// Declared accuracy of a data set's ground truth (Ceriani et al. 2009): a metric below it is noise.
-// Negative: not declared here (the reader's own declaration, if any, is used); 0: exact.
-struct GroundTruthAccuracy {
-    double position_m = -1;  // 1σ, m
-    double rotation_deg = -1;  // 1σ, °
 };
 
 struct DatasetSpec {
@@ -66,22 +61,6 @@ struct AlgorithmSpec {
     std::string where;
 };
 
-struct Limits {
-    int timeout_s = 1800;         // per cell, wall clock
-    uint64_t memory_mb = 4096;    // per cell, resident set
-    int threads = 1;              // OpenCV/TBB threads inside a cell: 1 keeps timings comparable and -j honest
-};
-
-// A benchmark problem's criterion (Rawseeds: "well-defined problems with explicit criteria"),
-// e.g. `rpe.trans.rmse <= 0.02`, checked per algorithm entry.
-struct Criterion {
-    std::string metric;   // ate.rmse, rpe.trans.rmse, failed_frames, ...
-    std::string op;       // <=, <, >=, >, ==
-    double value = 0;
-    bool required = true; // a failed required criterion makes `vobench run` exit non-zero
-    std::string text;     // as written
-};
-
 struct SweepConfig {
     std::filesystem::path file;
     std::string name;
@@ -98,8 +77,11 @@ struct SweepConfig {
     nlohmann::json source;           // the whole file as JSON, for the record
 };
 
-// Metric names a config may rank by or set criteria on.
+// Metric names a config may rank by or set criteria on (the catalogue's, metrics/metric_catalog.hpp).
 const std::vector<std::string>& known_metric_names();
+
+// The part of a config the report needs, kept in <out>/sweep.json.
+nlohmann::json sweep_record(const SweepConfig& config);
 
 // Throws ConfigError. Plugins are looked up in `registry`; a path that does not exist is an error
 // unless `check_paths` is false (for `--dry-run` on another machine's config).
@@ -107,7 +89,5 @@ SweepConfig load_sweep_config(const std::filesystem::path& file, const PluginReg
 
 // "${HOME}/data" → "/root/data"; "${X:-d}" → d when X is unset or empty.
 std::string expand_env(const std::string& text);
-
-Criterion parse_criterion(const std::string& text);  // throws std::invalid_argument
 
 }  // namespace vobench

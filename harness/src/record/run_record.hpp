@@ -1,11 +1,11 @@
-// run_record.hpp — a finished cell as the report sees it: runs/<id>/run.json plus the metrics,
+// run_record.hpp — a finished cell as the report reads it back: runs/<id>/run.json plus the metrics,
 // recomputed from runs/<id>/trajectory.txt and groundtruth.txt with the protocol the cell recorded.
 // Everything the tables, leaderboard, figures and page show comes from these records alone.
 #pragma once
 
 #include "metrics/evaluation.hpp"
 #include "metrics/metric_catalog.hpp"
-#include "sweep/cell.hpp"
+#include "record/cell.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -1,4 +1,4 @@
-#include "sweep/host_info.hpp"
+#include "record/host_info.hpp"
 
 #include <fmt/chrono.h>
 #include <fmt/format.h>

@@ -1,4 +1,4 @@
-#include "report/run_record.hpp"
+#include "record/run_record.hpp"
 
 #include "metrics/trajectory_io.hpp"
 #include "record/results_dir.hpp"
@@ -97,6 +97,8 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
             const double missing = std::max(0.0, r.run.value("frames_expected", 0.0) - r.run.value("frames", 0.0));
             r.metrics["lost_frames"] = lost;
             r.metrics["failed_frames"] = lost + (r.ok ? 0.0 : missing);
+            if (!r.ok)  // a failed row ranks nothing; what it shows (a partial run's ATE) must still be a number
+                for (auto it = r.metrics.begin(); it != r.metrics.end();) it = std::isfinite(it->second) ? std::next(it) : r.metrics.erase(it);
             if (r.ok)
                 if (const std::string why = stored_metrics_problem(r); !why.empty()) {
                     problem(id + ": not shown, " + why + " (" + run_dir.string() + ")");
