@@ -1,7 +1,7 @@
-// Reader speed (each reader alone, 640×480 and 1920×1080), and odometry speed, side by side in one run: put_vo vs OpenCV's RgbdOdometry (opencv_rgbd) on the same
-// frames, already decoded in memory, OpenCV limited to one thread — per frame time inside process().
-// Frames: synthetic Kinect v1 (640×480) and Kinect v2 (1920×1080) sequences rendered first, and the
-// real TUM fr1/rpy sample when ../shared/data is present. Also the renderer's frames/s per sensor.
+// Reader speed (each reader alone, 640×480 and 1920×1080), and odometry speed, side by side in one run: put_vo vs OpenCV's RgbdOdometry
+// (opencv_rgbd) on the same frames, already decoded in memory, OpenCV limited to one thread — per frame time inside process(). Frames:
+// synthetic Kinect v1 (640×480) and Kinect v2 (1920×1080) sequences rendered first, and the real TUM fr1/rpy sample when ../shared/data is
+// present. Also the renderer's frames/s per sensor.
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
 #include "run/frame_cache.hpp"
@@ -131,18 +131,20 @@ void run_cache(benchmark::State& state, const std::string& sensor) {
 
 }  // namespace
 
-BENCHMARK_CAPTURE(run_cache, tum/kinect1_640x480, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_cache, tum/kinect2_1920x1080, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_reader, tum/kinect1_640x480, "tum", "kinect1", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_reader, tum/kinect2_1920x1080, "tum", "kinect2", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_reader, putk2/kinect1_640x480, "putk2", "kinect1", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_reader, putk2/kinect2_1920x1080_registered, "putk2", "kinect2", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, put_vo/kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, put_vo/kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/kinect2_1920x1080, "opencv_rgbd", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, put_vo/tum_fr1_rpy, "put_vo", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_odometry, opencv_rgbd/tum_fr1_rpy, "opencv_rgbd", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_cache, tum / kinect1_640x480, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_cache, tum / kinect2_1920x1080, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, tum / kinect1_640x480, "tum", "kinect1", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, tum / kinect2_1920x1080, "tum", "kinect2", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, putk2 / kinect1_640x480, "putk2", "kinect1", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_reader, putk2 / kinect2_1920x1080_registered, "putk2", "kinect2", "putk2")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo / kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect2_1920x1080, "opencv_rgbd", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo / tum_fr1_rpy, "put_vo", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / tum_fr1_rpy, "opencv_rgbd", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_synth, kinect1, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK_CAPTURE(run_synth, kinect2, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 

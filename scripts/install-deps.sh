@@ -21,6 +21,7 @@ if [ "${1:-}" = "--test" ]; then
     python3 python3-jsonschema          # leaderboard.json against its JSON Schema
     chromium                            # report.html opened headless
     procps                              # pgrep/pkill in the sweep and Slurm tests
+    clang-format                        # the format check (CTest style.format)
   )
 fi
 

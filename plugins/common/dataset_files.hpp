@@ -3,8 +3,8 @@
 // vobench::sdk::Error(VOBENCH_IO_ERROR) naming the file.
 #pragma once
 
-#include <vobench/plugin.hpp>
 #include <vobench/vobench_plugin.h>
+#include <vobench/plugin.hpp>
 
 #include <opencv2/core.hpp>
 

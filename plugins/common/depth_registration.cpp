@@ -28,8 +28,10 @@ cv::Mat register_depth(const cv::Mat& depth, const Intrinsics& d, const Intrinsi
             if (Xc.z() <= 0.05) continue;
             const Eigen::Vector2d p = project(c, Xc);
             const double h = half * z / Xc.z();
-            const int u0 = std::max(0, static_cast<int>(std::ceil(p.x() - h))), u1 = std::min(size.width - 1, static_cast<int>(std::floor(p.x() + h)));
-            const int v0 = std::max(0, static_cast<int>(std::ceil(p.y() - h))), v1 = std::min(size.height - 1, static_cast<int>(std::floor(p.y() + h)));
+            const int u0 = std::max(0, static_cast<int>(std::ceil(p.x() - h))),
+                      u1 = std::min(size.width - 1, static_cast<int>(std::floor(p.x() + h)));
+            const int v0 = std::max(0, static_cast<int>(std::ceil(p.y() - h))),
+                      v1 = std::min(size.height - 1, static_cast<int>(std::floor(p.y() + h)));
             const float zc = static_cast<float>(Xc.z());
             for (int y = v0; y <= v1; ++y)
                 for (int x = u0; x <= u1; ++x) {

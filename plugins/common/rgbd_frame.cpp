@@ -12,22 +12,26 @@ namespace vobench::rgbd {
 cv::Mat wrap(const vobench_image& image) {
     int type;
     switch (image.format) {
-    case VOBENCH_PIXEL_RGB8:
-    case VOBENCH_PIXEL_BGR8: type = CV_8UC3; break;
-    case VOBENCH_PIXEL_GRAY8: type = CV_8UC1; break;
-    case VOBENCH_PIXEL_DEPTH_U16: type = CV_16UC1; break;
-    case VOBENCH_PIXEL_DEPTH_F32: type = CV_32FC1; break;
-    default: throw sdk::Error(VOBENCH_INVALID_ARGUMENT, "unsupported pixel format " + std::to_string(image.format));
+        case VOBENCH_PIXEL_RGB8:
+        case VOBENCH_PIXEL_BGR8: type = CV_8UC3; break;
+        case VOBENCH_PIXEL_GRAY8: type = CV_8UC1; break;
+        case VOBENCH_PIXEL_DEPTH_U16: type = CV_16UC1; break;
+        case VOBENCH_PIXEL_DEPTH_F32: type = CV_32FC1; break;
+        default: throw sdk::Error(VOBENCH_INVALID_ARGUMENT, "unsupported pixel format " + std::to_string(image.format));
     }
     return cv::Mat(image.height, image.width, type, const_cast<void*>(image.data), static_cast<std::size_t>(image.stride_bytes));
 }
 
 void to_gray(const vobench_image& image, cv::Mat& gray) {
     const cv::Mat m = wrap(image);
-    if (image.format == VOBENCH_PIXEL_BGR8) cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
-    else if (image.format == VOBENCH_PIXEL_RGB8) cv::cvtColor(m, gray, cv::COLOR_RGB2GRAY);
-    else if (image.format == VOBENCH_PIXEL_GRAY8) m.copyTo(gray);
-    else throw sdk::Error(VOBENCH_INVALID_ARGUMENT, "colour image has a depth pixel format");
+    if (image.format == VOBENCH_PIXEL_BGR8)
+        cv::cvtColor(m, gray, cv::COLOR_BGR2GRAY);
+    else if (image.format == VOBENCH_PIXEL_RGB8)
+        cv::cvtColor(m, gray, cv::COLOR_RGB2GRAY);
+    else if (image.format == VOBENCH_PIXEL_GRAY8)
+        m.copyTo(gray);
+    else
+        throw sdk::Error(VOBENCH_INVALID_ARGUMENT, "colour image has a depth pixel format");
 }
 
 double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p, const DepthRange& range) {
@@ -36,7 +40,8 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p, const 
     double lo = 1e9, hi = 0, centre = 0;
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-            const double d = depth.type() == CV_16UC1 ? depth.at<uint16_t>(y + dy, x + dx) * scale : depth.at<float>(y + dy, x + dx) * scale;
+            const double d =
+                depth.type() == CV_16UC1 ? depth.at<uint16_t>(y + dy, x + dx) * scale : depth.at<float>(y + dy, x + dx) * scale;
             if (!(d > 0)) return NAN;
             lo = std::min(lo, d);
             hi = std::max(hi, d);
@@ -46,8 +51,8 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p, const 
     return centre;
 }
 
-std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels,
-                                          const cv::Matx33d& K, const cv::Mat& distortion, const DepthRange& range) {
+std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels, const cv::Matx33d& K,
+                                          const cv::Mat& distortion, const DepthRange& range) {
     std::vector<cv::Point2f> normalised;
     if (!pixels.empty()) cv::undistortPoints(pixels, normalised, K, distortion);
     std::vector<Eigen::Vector3d> points(pixels.size());

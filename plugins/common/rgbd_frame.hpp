@@ -28,8 +28,8 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& pixel, co
 
 // Camera-frame 3-D points of (distorted) pixels: undistorted with K and `distortion`, times depth.
 // NaN where depth_at() is NaN.
-std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels,
-                                          const cv::Matx33d& K, const cv::Mat& distortion, const DepthRange& range);
+std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels, const cv::Matx33d& K,
+                                          const cv::Mat& distortion, const DepthRange& range);
 
 // K and distortion coefficients of an ABI camera.
 cv::Matx33d camera_matrix(const vobench_camera& camera);

@@ -35,8 +35,8 @@ bool fit_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen
 
 namespace {
 
-std::vector<int> classify(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to,
-                          const Eigen::Isometry3d& T, double threshold) {
+std::vector<int> classify(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const Eigen::Isometry3d& T,
+                          double threshold) {
     std::vector<int> inliers;
     const double t2 = threshold * threshold;
     for (std::size_t i = 0; i < from.size(); ++i)
@@ -46,8 +46,8 @@ std::vector<int> classify(const std::vector<Eigen::Vector3d>& from, const std::v
 
 }  // namespace
 
-RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to,
-                          const RansacOptions& o, std::mt19937_64& rng) {
+RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const RansacOptions& o,
+                          std::mt19937_64& rng) {
     RansacResult best;
     const int n = static_cast<int>(from.size());
     if (n < 3) return best;
@@ -57,8 +57,10 @@ RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::v
     for (int it = 0; it < needed && it < o.max_iterations; ++it) {
         best.iterations = it + 1;
         sample[0] = pick(rng);
-        do sample[1] = pick(rng); while (sample[1] == sample[0]);
-        do sample[2] = pick(rng); while (sample[2] == sample[0] || sample[2] == sample[1]);
+        do sample[1] = pick(rng);
+        while (sample[1] == sample[0]);
+        do sample[2] = pick(rng);
+        while (sample[2] == sample[0] || sample[2] == sample[1]);
         Eigen::Isometry3d T;
         if (!fit_rigid(from, to, sample, T)) continue;
         std::vector<int> inliers = classify(from, to, T, o.inlier_threshold_m);

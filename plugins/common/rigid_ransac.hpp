@@ -32,8 +32,8 @@ struct RansacResult {
 };
 
 // Finds T with to_i ≈ T · from_i for as many i as possible.
-RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to,
-                          const RansacOptions& options, std::mt19937_64& rng);
+RansacResult ransac_rigid(const std::vector<Eigen::Vector3d>& from, const std::vector<Eigen::Vector3d>& to, const RansacOptions& options,
+                          std::mt19937_64& rng);
 
 // Least-squares rigid transform (Umeyama) of the indexed pairs; false when degenerate. With weights
 // (one per pair, indexed like `from`), the weighted form: centroids and cross-covariance weighted.

@@ -13,7 +13,6 @@
 #define PIN_SIZE(s, n) _Static_assert(sizeof(s) == (n), "size of " #s " changed: the ABI broke")
 #define PIN(s, f, n) _Static_assert(offsetof(s, f) == (n), "offset of " #s "." #f " changed: the ABI broke")
 
-
 PIN_SIZE(vobench_param_desc, 64);
 PIN(vobench_param_desc, struct_size, 0);
 PIN(vobench_param_desc, name, 8);

@@ -15,19 +15,19 @@
 
 /* The faults: FAULT is one of these numbers (tests/adversarial/CMakeLists.txt). */
 #define HEALTHY 0
-#define ZERO_FRAMES 1 /* declares no frames */
-#define NAN_STAMP 2 /* frame 5 has a NaN stamp */
-#define NAN_GROUND_TRUTH 3 /* ground-truth row 2 is NaN */
-#define STAMPS_BACKWARDS 4 /* frame 4 is stamped before frame 3 */
-#define LIES_ABOUT_COUNT 5 /* declares 30 frames, read_frame fails from frame 10 */
-#define WRONG_SIZE 6 /* frame 3 is 32x24 where the camera is 64x48 */
-#define NULL_CAMERA 7 /* describe() gives no camera */
-#define NAN_FOCAL 8 /* fx is NaN */
-#define CRASH_IN_READ 9 /* read_frame(5) dereferences NULL */
-#define HANG_IN_OPEN 10 /* open() never returns */
+#define ZERO_FRAMES 1       /* declares no frames */
+#define NAN_STAMP 2         /* frame 5 has a NaN stamp */
+#define NAN_GROUND_TRUTH 3  /* ground-truth row 2 is NaN */
+#define STAMPS_BACKWARDS 4  /* frame 4 is stamped before frame 3 */
+#define LIES_ABOUT_COUNT 5  /* declares 30 frames, read_frame fails from frame 10 */
+#define WRONG_SIZE 6        /* frame 3 is 32x24 where the camera is 64x48 */
+#define NULL_CAMERA 7       /* describe() gives no camera */
+#define NAN_FOCAL 8         /* fx is NaN */
+#define CRASH_IN_READ 9     /* read_frame(5) dereferences NULL */
+#define HANG_IN_OPEN 10     /* open() never returns */
 #define GT_WITHOUT_ARRAY 11 /* gt_count 30, ground_truth NULL */
-#define HOSTILE_NAME 12 /* the sequence's name holds a newline and a pose line (otherwise healthy) */
-#define NULL_FRAME_DATA 13 /* frame 2's colour data pointer is NULL */
+#define HOSTILE_NAME 12     /* the sequence's name holds a newline and a pose line (otherwise healthy) */
+#define NULL_FRAME_DATA 13  /* frame 2's colour data pointer is NULL */
 
 #ifndef FAULT
 #define FAULT 0
@@ -125,9 +125,19 @@ static void r_destroy(vobench_dataset* self) { free(self); }
 
 static const vobench_dataset_api k_api = {sizeof(vobench_dataset_api), r_create, r_open, r_describe, r_read_frame, r_last_error, r_destroy};
 
-static const vobench_plugin_descriptor k_descriptor = {
-    sizeof(vobench_plugin_descriptor), VOBENCH_ABI_VERSION, VOBENCH_API_VERSION, VOBENCH_KIND_DATASET, "corpus_reader", "1.0",
-    "The adversarial corpus's reader (healthy: 30 frames, 1 cm per frame along x).", "MIT", NULL, 0, NULL, &k_api, NULL};
+static const vobench_plugin_descriptor k_descriptor = {sizeof(vobench_plugin_descriptor),
+                                                       VOBENCH_ABI_VERSION,
+                                                       VOBENCH_API_VERSION,
+                                                       VOBENCH_KIND_DATASET,
+                                                       "corpus_reader",
+                                                       "1.0",
+                                                       "The adversarial corpus's reader (healthy: 30 frames, 1 cm per frame along x).",
+                                                       "MIT",
+                                                       NULL,
+                                                       0,
+                                                       NULL,
+                                                       &k_api,
+                                                       NULL};
 
 VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t abi, uint32_t api) {
     (void)api;

@@ -18,33 +18,33 @@
 
 /* The faults: FAULT is one of these numbers (tests/adversarial/CMakeLists.txt). */
 #define HEALTHY 0
-#define ENTRY_CRASH 1 /* the entry function dereferences NULL */
-#define ENTRY_HANG 2 /* the entry function never returns */
-#define CTOR_STDOUT 3 /* a library constructor prints to stdout (otherwise healthy) */
-#define BAD_UTF8_STRINGS 4 /* version and description are invalid UTF-8 (otherwise healthy) */
-#define CLOSE_FDS 5 /* closes every file descriptor at frame 10, then goes on */
-#define HUGE_POSE 6 /* tx = 1e300: finite, absurd */
-#define NAN_COUNTER 7 /* a counter of NaN */
-#define MANY_COUNTERS 8 /* 80,000 distinct counter names in one call */
+#define ENTRY_CRASH 1       /* the entry function dereferences NULL */
+#define ENTRY_HANG 2        /* the entry function never returns */
+#define CTOR_STDOUT 3       /* a library constructor prints to stdout (otherwise healthy) */
+#define BAD_UTF8_STRINGS 4  /* version and description are invalid UTF-8 (otherwise healthy) */
+#define CLOSE_FDS 5         /* closes every file descriptor at frame 10, then goes on */
+#define HUGE_POSE 6         /* tx = 1e300: finite, absurd */
+#define NAN_COUNTER 7       /* a counter of NaN */
+#define MANY_COUNTERS 8     /* 80,000 distinct counter names in one call */
 #define LONG_COUNTER_NAME 9 /* a 4 KB counter name */
-#define FORK_CHILD 10 /* forks a child that sleeps for an hour */
-#define FORK_ESCAPE 11 /* double fork + setsid: a daemon outside the cell's session */
-#define KILL_PARENT 12 /* kill(getppid(), SIGTERM): the harness */
-#define EXIT0 13 /* exit(0) inside process() */
-#define BAD_QUATERNION 14 /* a quaternion of norm 2 */
-#define NULL_LAST_ERROR 15 /* an error status, and last_error() returns NULL */
-#define BAD_UTF8_ERROR 16 /* an error status with an invalid UTF-8 message */
-#define LOG_FLOOD 17 /* writes 200 MB to stderr */
-#define FORK_MEMORY 18 /* a forked child touches 1.5 GB: the group's memory counts */
-#define UNKNOWN_STATUS 19 /* tracking status 7 */
-#define CREATE_NULL 20 /* create() returns NULL */
-#define START_ERROR 21 /* start() fails with a message */
-#define FORGE_STREAM 22 /* writes a forged line into every file it has open */
-#define HANG_IN_DESTROY 23 /* destroy() never returns */
+#define FORK_CHILD 10       /* forks a child that sleeps for an hour */
+#define FORK_ESCAPE 11      /* double fork + setsid: a daemon outside the cell's session */
+#define KILL_PARENT 12      /* kill(getppid(), SIGTERM): the harness */
+#define EXIT0 13            /* exit(0) inside process() */
+#define BAD_QUATERNION 14   /* a quaternion of norm 2 */
+#define NULL_LAST_ERROR 15  /* an error status, and last_error() returns NULL */
+#define BAD_UTF8_ERROR 16   /* an error status with an invalid UTF-8 message */
+#define LOG_FLOOD 17        /* writes 200 MB to stderr */
+#define FORK_MEMORY 18      /* a forked child touches 1.5 GB: the group's memory counts */
+#define UNKNOWN_STATUS 19   /* tracking status 7 */
+#define CREATE_NULL 20      /* create() returns NULL */
+#define START_ERROR 21      /* start() fails with a message */
+#define FORGE_STREAM 22     /* writes a forged line into every file it has open */
+#define HANG_IN_DESTROY 23  /* destroy() never returns */
 #define ABORT_IN_DESTROY 24 /* destroy() aborts */
-#define STACK_OVERFLOW 25 /* unbounded recursion */
-#define RAISE_SIGTERM 26 /* raise(SIGTERM) on itself */
-#define FORGE_SUCCESS 27 /* at frame 3 rewrites the cell's sequence.json (3 frames) and result.json ("ok"), then _exit(0) */
+#define STACK_OVERFLOW 25   /* unbounded recursion */
+#define RAISE_SIGTERM 26    /* raise(SIGTERM) on itself */
+#define FORGE_SUCCESS 27    /* at frame 3 rewrites the cell's sequence.json (3 frames) and result.json ("ok"), then _exit(0) */
 
 #ifndef FAULT
 #define FAULT 0
@@ -134,8 +134,7 @@ static void write_text(const char* folder, const char* name, const char* text) {
     }
 }
 
-static vobench_status c_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose,
-                                vobench_tracking_status* status) {
+static vobench_status c_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose, vobench_tracking_status* status) {
     const uint64_t i = frame->index;
     pose->tx = 0.01 * (double)i;
     pose->ty = pose->tz = 0.0;
@@ -146,72 +145,73 @@ static vobench_status c_process(vobench_odometry* self, const vobench_frame* fra
         for (int fd = 3; fd < 4096; ++fd) close(fd);
     if (i != 3) return VOBENCH_OK;
     switch (FAULT) {
-    case HUGE_POSE: pose->tx = 1e300; break;
-    case NAN_COUNTER: self->host->counter(self->host->context, "inliers", NAN); break;
-    case MANY_COUNTERS: {
-        char name[32];
-        for (int k = 0; k < 80000; ++k) {
-            snprintf(name, sizeof name, "c%d", k);
-            self->host->counter(self->host->context, name, k);
+        case HUGE_POSE: pose->tx = 1e300; break;
+        case NAN_COUNTER: self->host->counter(self->host->context, "inliers", NAN); break;
+        case MANY_COUNTERS: {
+            char name[32];
+            for (int k = 0; k < 80000; ++k) {
+                snprintf(name, sizeof name, "c%d", k);
+                self->host->counter(self->host->context, name, k);
+            }
+            break;
         }
-        break;
-    }
-    case LONG_COUNTER_NAME: {
-        static char name[4097];
-        memset(name, 'n', 4096);
-        self->host->counter(self->host->context, name, 1);
-        break;
-    }
-    case FORK_CHILD:
-        if (fork() == 0) {
-            sleep(3600);
-            _exit(0);
+        case LONG_COUNTER_NAME: {
+            static char name[4097];
+            memset(name, 'n', 4096);
+            self->host->counter(self->host->context, name, 1);
+            break;
         }
-        break;
-    case FORK_ESCAPE:
-        if (fork() == 0) {
-            setsid();
+        case FORK_CHILD:
             if (fork() == 0) {
                 sleep(3600);
                 _exit(0);
             }
+            break;
+        case FORK_ESCAPE:
+            if (fork() == 0) {
+                setsid();
+                if (fork() == 0) {
+                    sleep(3600);
+                    _exit(0);
+                }
+                _exit(0);
+            }
+            sleep(1); /* let the daemon be re-parented before the cell ends */
+            break;
+        case KILL_PARENT:
+            kill(getppid(), SIGTERM);
+            sleep(1);
+            break;
+        case EXIT0: exit(0);
+        case BAD_QUATERNION: pose->qw = 2.0; break;
+        case NULL_LAST_ERROR: return VOBENCH_ERROR;
+        case BAD_UTF8_ERROR: snprintf(self->error, sizeof self->error, "bad \xff\xfe bytes \xc0\x80 in the message"); return VOBENCH_ERROR;
+        case LOG_FLOOD: {
+            static char line[1 << 16];
+            memset(line, 'x', sizeof line);
+            for (int k = 0; k < 200 * 16; ++k) (void)!write(2, line, sizeof line);
+            break;
+        }
+        case FORK_MEMORY:
+            if (fork() == 0) {
+                touch_memory((size_t)1536 << 20);
+                _exit(0);
+            }
+            sleep(5);
+            break;
+        case UNKNOWN_STATUS: *status = 7; break;
+        case FORGE_STREAM: forge_every_open_file(); break;
+        case STACK_OVERFLOW: return (vobench_status)recurse(0);
+        case RAISE_SIGTERM: raise(SIGTERM); break;
+        case FORGE_SUCCESS: {
+            char folder[4096];
+            if (cell_folder(folder, sizeof folder)) {
+                write_text(folder, "sequence.json", "{\"name\": \"forged\", \"frames_to_run\": 3, \"frame_count\": 3, \"gt_count\": 30}\n");
+                write_text(folder, "result.json", "{\"status\": \"ok\", \"error\": \"\", \"frames\": 3}\n");
+            }
             _exit(0);
         }
-        sleep(1); /* let the daemon be re-parented before the cell ends */
-        break;
-    case KILL_PARENT: kill(getppid(), SIGTERM); sleep(1); break;
-    case EXIT0: exit(0);
-    case BAD_QUATERNION: pose->qw = 2.0; break;
-    case NULL_LAST_ERROR: return VOBENCH_ERROR;
-    case BAD_UTF8_ERROR:
-        snprintf(self->error, sizeof self->error, "bad \xff\xfe bytes \xc0\x80 in the message");
-        return VOBENCH_ERROR;
-    case LOG_FLOOD: {
-        static char line[1 << 16];
-        memset(line, 'x', sizeof line);
-        for (int k = 0; k < 200 * 16; ++k) (void)!write(2, line, sizeof line);
-        break;
-    }
-    case FORK_MEMORY:
-        if (fork() == 0) {
-            touch_memory((size_t)1536 << 20);
-            _exit(0);
-        }
-        sleep(5);
-        break;
-    case UNKNOWN_STATUS: *status = 7; break;
-    case FORGE_STREAM: forge_every_open_file(); break;
-    case STACK_OVERFLOW: return (vobench_status)recurse(0);
-    case RAISE_SIGTERM: raise(SIGTERM); break;
-    case FORGE_SUCCESS: {
-        char folder[4096];
-        if (cell_folder(folder, sizeof folder)) {
-            write_text(folder, "sequence.json", "{\"name\": \"forged\", \"frames_to_run\": 3, \"frame_count\": 3, \"gt_count\": 30}\n");
-            write_text(folder, "result.json", "{\"status\": \"ok\", \"error\": \"\", \"frames\": 3}\n");
-        }
-        _exit(0);
-    }
-    default: break;
+        default: break;
     }
     return VOBENCH_OK;
 }
@@ -230,14 +230,27 @@ static void c_destroy(vobench_odometry* self) {
 
 static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api), c_create, c_start, c_process, NULL, c_last_error, c_destroy};
 
-static const vobench_plugin_descriptor k_descriptor = {
-    sizeof(vobench_plugin_descriptor), VOBENCH_ABI_VERSION, VOBENCH_API_VERSION, VOBENCH_KIND_ODOMETRY, "corpus_vo",
 #if FAULT == BAD_UTF8_STRINGS
-    "1.\xff\xfe", "an odometry plugin whose strings are not UTF-8: \xc3\x28 \xa0\xa1",
+#define CORPUS_VERSION "1.\xff\xfe"
+#define CORPUS_DESCRIPTION "an odometry plugin whose strings are not UTF-8: \xc3\x28 \xa0\xa1"
 #else
-    "1.0", "The adversarial corpus's odometry plugin (healthy: 1 cm per frame along x).",
+#define CORPUS_VERSION "1.0"
+#define CORPUS_DESCRIPTION "The adversarial corpus's odometry plugin (healthy: 1 cm per frame along x)."
 #endif
-    "MIT", NULL, 0, NULL, NULL, &k_api};
+
+static const vobench_plugin_descriptor k_descriptor = {sizeof(vobench_plugin_descriptor),
+                                                       VOBENCH_ABI_VERSION,
+                                                       VOBENCH_API_VERSION,
+                                                       VOBENCH_KIND_ODOMETRY,
+                                                       "corpus_vo",
+                                                       CORPUS_VERSION,
+                                                       CORPUS_DESCRIPTION,
+                                                       "MIT",
+                                                       NULL,
+                                                       0,
+                                                       NULL,
+                                                       NULL,
+                                                       &k_api};
 
 VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t abi, uint32_t api) {
     (void)api;

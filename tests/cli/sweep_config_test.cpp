@@ -1,5 +1,5 @@
-#include "sweep/cell.hpp"
 #include "sweep/sweep_config.hpp"
+#include "sweep/cell.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -82,12 +82,14 @@ TEST_CASE("configuration errors name file, line and column", "[config]") {
                Contains("sweep.yaml:4:31: plugin 'put_vo', parameter 'keyframe_interval': '0' is outside [1, 100]"));
     CHECK_THAT(error_of(kData + "algorithms:\n  - plugin: put_vo\n    grid: {keyframe_interval: [2, 200]}\n"),
                Contains("sweep.yaml:5:35: plugin 'put_vo', parameter 'keyframe_interval': '200' is outside [1, 100]"));
-    CHECK_THAT(error_of(kData + "algorithms:\n  - plugin: put_vo\n    grid: {no_such: [1]}\n"), Contains("sweep.yaml:5:22: plugin 'put_vo' has no parameter 'no_such'"));
+    CHECK_THAT(error_of(kData + "algorithms:\n  - plugin: put_vo\n    grid: {no_such: [1]}\n"),
+               Contains("sweep.yaml:5:22: plugin 'put_vo' has no parameter 'no_such'"));
     CHECK_THAT(error_of("datasets:\n  - {name: t, reader: tum, path: /no/such/folder}\n" + algo),
                Contains("sweep.yaml:2:34: no such sequence folder: /no/such/folder"));
     CHECK_THAT(error_of(kData + algo + "limits: {timeout: 0}\n"), Contains("sweep.yaml:5:19: timeout must be at least 1 s"));
     CHECK_THAT(error_of(kData + algo + "rank_by: speed\n"), Contains("sweep.yaml:5:10: rank_by: unknown metric 'speed'"));
-    CHECK_THAT(error_of(kData + algo + "criteria: ['ate.rmse <== 1']\n"), Contains("sweep.yaml:5:12: criterion 'ate.rmse <== 1' is not of the form"));
+    CHECK_THAT(error_of(kData + algo + "criteria: ['ate.rmse <== 1']\n"),
+               Contains("sweep.yaml:5:12: criterion 'ate.rmse <== 1' is not of the form"));
     CHECK_THAT(error_of(kData + algo + "protocol: {alignment: affine}\n"), Contains("unknown alignment 'affine'"));
     CHECK_THAT(error_of("datasets: [\n"), Contains("sweep.yaml:"));
 }

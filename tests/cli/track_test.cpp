@@ -53,8 +53,8 @@ TEST_CASE("vobench refuses a plugin error cleanly and keeps the frames done", "[
     test::TempDir out;
     std::string text;
     const std::string cmd = test::cli().string() + " -q track --dataset tum --path " + dir.string() + " --algorithm " +
-                            test::fault_plugin("vobench_counter").string() + " --param throw_at=5 --out " +
-                            out.path().string() + " --json 2>&1";
+                            test::fault_plugin("vobench_counter").string() + " --param throw_at=5 --out " + out.path().string() +
+                            " --json 2>&1";
     CHECK(test::run_command(cmd, text) == 1);
     CHECK_THAT(text, Contains("plugin 'counter' failed at frame 5 (error): deliberate failure at frame 5"));
     CHECK(metrics::read_trajectory(out.path() / "trajectory.txt").poses.size() == 5);
@@ -63,9 +63,8 @@ TEST_CASE("vobench refuses a plugin error cleanly and keeps the frames done", "[
 TEST_CASE("vobench eval prints the JSON of the issue's form", "[cli][eval]") {
     VOBENCH_REQUIRE_DATA(dir, "real/trajectories");
     std::string text;
-    REQUIRE(test::run_command(test::cli().string() + " eval --gt " + (dir / "freiburg1_xyz-groundtruth.txt").string() +
-                                  " --est " + (dir / "freiburg1_xyz-rgbdslam.txt").string() +
-                                  " --protocol tum-scripts --delta 1 --json 2>/dev/null",
+    REQUIRE(test::run_command(test::cli().string() + " eval --gt " + (dir / "freiburg1_xyz-groundtruth.txt").string() + " --est " +
+                                  (dir / "freiburg1_xyz-rgbdslam.txt").string() + " --protocol tum-scripts --delta 1 --json 2>/dev/null",
                               text) == 0);
     const auto j = nlohmann::json::parse(text);
     for (const char* key : {"rmse", "mean", "median", "std", "min", "max", "sse", "count"}) {

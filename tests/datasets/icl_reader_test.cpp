@@ -52,12 +52,16 @@ TEST_CASE("icl_nuim presents fy > 0 and the same pixels and poses as the TUM lay
     }
     for (uint64_t i = 0; i < 6; i += 5) {
         const vobench_frame& fi = icl.read(i);
-        const cv::Mat ci(fi.color->height, fi.color->width, CV_8UC3, const_cast<void*>(fi.color->data), static_cast<std::size_t>(fi.color->stride_bytes));
-        const cv::Mat di(fi.depth->height, fi.depth->width, CV_16UC1, const_cast<void*>(fi.depth->data), static_cast<std::size_t>(fi.depth->stride_bytes));
+        const cv::Mat ci(fi.color->height, fi.color->width, CV_8UC3, const_cast<void*>(fi.color->data),
+                         static_cast<std::size_t>(fi.color->stride_bytes));
+        const cv::Mat di(fi.depth->height, fi.depth->width, CV_16UC1, const_cast<void*>(fi.depth->data),
+                         static_cast<std::size_t>(fi.depth->stride_bytes));
         const cv::Mat ci_copy = ci.clone(), di_copy = di.clone();
         const vobench_frame& ft = tum.read(i);
-        const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data), static_cast<std::size_t>(ft.color->stride_bytes));
-        const cv::Mat dt(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data), static_cast<std::size_t>(ft.depth->stride_bytes));
+        const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data),
+                         static_cast<std::size_t>(ft.color->stride_bytes));
+        const cv::Mat dt(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data),
+                         static_cast<std::size_t>(ft.depth->stride_bytes));
         CHECK(cv::norm(ci_copy, ct, cv::NORM_INF) == 0);
         CHECK(cv::norm(di_copy, dt, cv::NORM_INF) == 0);
     }
@@ -124,12 +128,19 @@ TEST_CASE("icl_nuim reads the POV-Ray layout: ray distances to z, poses from cam
     DatasetInstance pov(PluginLibrary::load(test::plugin("icl_nuim")));
     pov.open(pov_dir.string(), {});
     const vobench_frame& fp = pov.read(3);
-    const cv::Mat zp = cv::Mat(fp.depth->height, fp.depth->width, CV_32F, const_cast<void*>(fp.depth->data), static_cast<std::size_t>(fp.depth->stride_bytes)).clone();
-    const cv::Mat cp = cv::Mat(fp.color->height, fp.color->width, CV_8UC3, const_cast<void*>(fp.color->data), static_cast<std::size_t>(fp.color->stride_bytes)).clone();
+    const cv::Mat zp = cv::Mat(fp.depth->height, fp.depth->width, CV_32F, const_cast<void*>(fp.depth->data),
+                               static_cast<std::size_t>(fp.depth->stride_bytes))
+                           .clone();
+    const cv::Mat cp = cv::Mat(fp.color->height, fp.color->width, CV_8UC3, const_cast<void*>(fp.color->data),
+                               static_cast<std::size_t>(fp.color->stride_bytes))
+                           .clone();
     const vobench_frame& ft = tum.read(3);
     cv::Mat zt;
-    cv::Mat(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data), static_cast<std::size_t>(ft.depth->stride_bytes)).convertTo(zt, CV_32F, ft.depth_scale);
-    const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data), static_cast<std::size_t>(ft.color->stride_bytes));
+    cv::Mat(ft.depth->height, ft.depth->width, CV_16UC1, const_cast<void*>(ft.depth->data),
+            static_cast<std::size_t>(ft.depth->stride_bytes))
+        .convertTo(zt, CV_32F, ft.depth_scale);
+    const cv::Mat ct(ft.color->height, ft.color->width, CV_8UC3, const_cast<void*>(ft.color->data),
+                     static_cast<std::size_t>(ft.color->stride_bytes));
     CHECK(cv::norm(cp, ct, cv::NORM_INF) == 0);
     // z from ray distances (6 decimals) against the TUM layout's 1/5000 m steps.
     CHECK(cv::norm(zp, zt, cv::NORM_INF) <= 0.00011);

@@ -40,10 +40,14 @@ cv::Mat depth_metres(const vobench_frame& f) {
 }
 
 cv::Mat color_of(const vobench_frame& f) {
-    return cv::Mat(f.color->height, f.color->width, CV_8UC3, const_cast<void*>(f.color->data), static_cast<std::size_t>(f.color->stride_bytes)).clone();
+    return cv::Mat(f.color->height, f.color->width, CV_8UC3, const_cast<void*>(f.color->data),
+                   static_cast<std::size_t>(f.color->stride_bytes))
+        .clone();
 }
 
-std::string open_error(const fs::path& dir, const ParamMap& options = {}) { return test::read_all_error(test::plugin("putk2"), dir, options); }
+std::string open_error(const fs::path& dir, const ParamMap& options = {}) {
+    return test::read_all_error(test::plugin("putk2"), dir, options);
+}
 
 }  // namespace
 
@@ -122,7 +126,8 @@ TEST_CASE("putk2: bad input is a clear error naming the file and line", "[datase
     const fs::path dir = render(tmp.path(), "kinect2", "putk2", 2);
     SECTION("malformed camData line") {
         std::ofstream(dir / "camData.txt") << "00033000, 1078.7, 1076.5, 952.7\n";
-        CHECK_THAT(open_error(dir), Contains("camData.txt:1: expected `id, fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6` (13 values), found 4"));
+        CHECK_THAT(open_error(dir),
+                   Contains("camData.txt:1: expected `id, fx, fy, cx, cy, k1, k2, p1, p2, k3, k4, k5, k6` (13 values), found 4"));
     }
     SECTION("malformed matched line") {
         std::ofstream(dir / "matched.txt", std::ios::app) << "x rgb_00009.png\n";

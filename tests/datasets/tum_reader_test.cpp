@@ -34,7 +34,9 @@ void write_sequence(const fs::path& dir, int frames = 3) {
     for (int k = 0; k < frames * 10; ++k) gt << std::fixed << 100.0 + 0.01 * k << " " << 0.01 * k << " 0 0 0 0 0 1\n";
 }
 
-std::string open_error(const fs::path& dir, const ParamMap& options = {}) { return test::read_all_error(test::plugin("tum"), dir, options); }
+std::string open_error(const fs::path& dir, const ParamMap& options = {}) {
+    return test::read_all_error(test::plugin("tum"), dir, options);
+}
 
 }  // namespace
 

@@ -11,7 +11,11 @@ namespace {
 class Counter : public vobench::sdk::Odometry {
 public:
     static vobench::sdk::PluginInfo info() {
-        return {"counter", "1.0.0", "Test plugin: counts frames per instance.", "MIT", "",
+        return {"counter",
+                "1.0.0",
+                "Test plugin: counts frames per instance.",
+                "MIT",
+                "",
                 {{"start", VOBENCH_PARAM_INT, "0", -1000, 1000, "", "first count"},
                  {"throw_at", VOBENCH_PARAM_INT, "-1", -1, 1000000, "", "frame at which process() throws (-1: never)"}}};
     }

@@ -38,8 +38,7 @@ static vobench_status f_start(vobench_odometry* self, const vobench_odometry_con
     (void)config;
     return VOBENCH_OK;
 }
-static vobench_status f_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose,
-                                vobench_tracking_status* status) {
+static vobench_status f_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose, vobench_tracking_status* status) {
     (void)self;
     (void)frame;
 #if FAULT == FAULT_SEGFAULT
@@ -48,8 +47,7 @@ static vobench_status f_process(vobench_odometry* self, const vobench_frame* fra
         *nowhere = 42; /* SIGSEGV */
     }
 #elif FAULT == FAULT_HANG
-    for (;;) {
-    }
+    for (;;) {}
 #elif FAULT == FAULT_EXIT
     exit(3);
 #elif FAULT == FAULT_ABORT
@@ -102,13 +100,17 @@ static const char* f_last_error(vobench_odometry* self) {
 }
 static void f_destroy(vobench_odometry* self) { free(self); }
 
-static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api), f_create, f_start,
+static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api),
+                                           f_create,
+                                           f_start,
 #if FAULT == FAULT_NULL_FUNCTION
                                            NULL,
 #else
                                            f_process,
 #endif
-                                           NULL, f_last_error, f_destroy};
+                                           NULL,
+                                           f_last_error,
+                                           f_destroy};
 
 static const vobench_param_desc k_params[] = {
     {sizeof(vobench_param_desc), "gain", VOBENCH_PARAM_DOUBLE,
@@ -126,8 +128,18 @@ static const vobench_plugin_descriptor k_descriptor = {
 #else
     sizeof(vobench_plugin_descriptor),
 #endif
-    VOBENCH_ABI_VERSION, VOBENCH_API_VERSION, VOBENCH_KIND_ODOMETRY, "fault_plugin", "0.0.1",
-    "A deliberately broken plugin for tests.", "MIT", NULL, 1, k_params, NULL, &k_api};
+    VOBENCH_ABI_VERSION,
+    VOBENCH_API_VERSION,
+    VOBENCH_KIND_ODOMETRY,
+    "fault_plugin",
+    "0.0.1",
+    "A deliberately broken plugin for tests.",
+    "MIT",
+    NULL,
+    1,
+    k_params,
+    NULL,
+    &k_api};
 
 #if FAULT == FAULT_NO_ENTRY
 VOBENCH_EXPORT int some_other_function(void) { return 1; }

@@ -15,17 +15,16 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
     try {
         switch (data[0] % 9) {
-        case 0: vobench::tum::parse_list(text, "fuzz"); break;
-        case 1: vobench::putk2::parse_cam_data(text, "fuzz"); break;
-        case 2: vobench::putk2::parse_depth_camera(text, "fuzz"); break;
-        case 3: vobench::putk2::parse_matched(text, "fuzz"); break;
-        case 4: vobench::icl::parse_associations(text, "fuzz"); break;
-        case 5: vobench::icl::parse_camera(text, "fuzz"); break;
-        case 6: vobench::icl::parse_camera_vectors(text, "fuzz"); break;
-        case 7: vobench::icl::parse_ray_depth(text, "fuzz", 16); break;
-        default: vobench::icl::parse_sim(text, "fuzz"); break;
+            case 0: vobench::tum::parse_list(text, "fuzz"); break;
+            case 1: vobench::putk2::parse_cam_data(text, "fuzz"); break;
+            case 2: vobench::putk2::parse_depth_camera(text, "fuzz"); break;
+            case 3: vobench::putk2::parse_matched(text, "fuzz"); break;
+            case 4: vobench::icl::parse_associations(text, "fuzz"); break;
+            case 5: vobench::icl::parse_camera(text, "fuzz"); break;
+            case 6: vobench::icl::parse_camera_vectors(text, "fuzz"); break;
+            case 7: vobench::icl::parse_ray_depth(text, "fuzz", 16); break;
+            default: vobench::icl::parse_sim(text, "fuzz"); break;
         }
-    } catch (const std::runtime_error&) {
-    }
+    } catch (const std::runtime_error&) {}
     return 0;
 }

@@ -15,7 +15,6 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     o.tum_scripts = (data[0] & 0x10) != 0;
     try {
         parse_trajectory(text, "fuzz", o);
-    } catch (const TrajectoryError&) {
-    }
+    } catch (const TrajectoryError&) {}
     return 0;
 }

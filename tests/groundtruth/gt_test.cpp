@@ -6,9 +6,9 @@
 #include "metrics/trajectory_io.hpp"
 #include "test_support.hpp"
 
+#include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
-#include <Eigen/Geometry>
 
 #include <algorithm>
 #include <cmath>
@@ -100,7 +100,7 @@ TEST_CASE("gt compare: known offsets at validation poses, counted as Rawseeds do
 
 TEST_CASE("gt fuse: the fused stream beats both inputs against the known truth", "[gt]") {
     gt::PoseStream a, b;
-    a.poses = stream(0.10, 4.0, 6.0, 0.02, 1.0, 11);   // camera-network-like: 10 Hz, 2 cm, 1°, a 2 s gap
+    a.poses = stream(0.10, 4.0, 6.0, 0.02, 1.0, 11);  // camera-network-like: 10 Hz, 2 cm, 1°, a 2 s gap
     a.sigma_pos_m = 0.02;
     a.sigma_rot_deg = 1.0;
     b.poses = stream(0.15, 12.0, 14.0, 0.05, 2.0, 12);  // laser-like: 6.7 Hz, 5 cm, 2°, another gap

@@ -14,8 +14,8 @@ namespace {
 
 // associate.py transcribed literally: all N·M pairs, sorted as Python tuples, greedy. The reference
 // the fast version must equal.
-std::vector<std::pair<std::size_t, std::size_t>> brute_force(const std::vector<double>& a, const std::vector<double>& b,
-                                                             double offset, double max_difference) {
+std::vector<std::pair<std::size_t, std::size_t>> brute_force(const std::vector<double>& a, const std::vector<double>& b, double offset,
+                                                             double max_difference) {
     std::vector<std::tuple<double, double, double, std::size_t, std::size_t>> potential;
     for (std::size_t i = 0; i < a.size(); ++i)
         for (std::size_t j = 0; j < b.size(); ++j)
@@ -75,7 +75,6 @@ TEST_CASE("association equals the literal O(N·M) script on random stamps with t
 }
 
 TEST_CASE("zero matches is an error that states both stamp ranges", "[metrics][association]") {
-    CHECK_THROWS_WITH(associate({1.0, 2.0}, {1e9, 1e9 + 1}, {}),
-                      Contains("ground truth spans 1.000000 … 2.000000 (2 poses)") &&
-                          Contains("estimate spans 1000000000.000000 … 1000000001.000000"));
+    CHECK_THROWS_WITH(associate({1.0, 2.0}, {1e9, 1e9 + 1}, {}), Contains("ground truth spans 1.000000 … 2.000000 (2 poses)") &&
+                                                                     Contains("estimate spans 1000000000.000000 … 1000000001.000000"));
 }

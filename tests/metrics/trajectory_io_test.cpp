@@ -101,7 +101,8 @@ TEST_CASE("PUTK2 raw: Rodrigues vector, and eq. 10 with a camera-in-marker pose"
     const ReadResult cam = parse_trajectory(text, "t", o);
     CHECK((cam.poses[0].p - Eigen::Vector3d(1, 3, 3)).norm() < 1e-12);
     CHECK_THROWS_WITH(parse("0;1;2\n", TrajectoryFormat::Putk2Raw), Contains("traj.txt:1: expected 7 values, found 3"));
-    CHECK_THROWS_WITH(parse("1e20;0;0;0;0;0;0\n", TrajectoryFormat::Putk2Raw), Contains("traj.txt:1: the frame id is not an integer in [0, 2^53]"));
+    CHECK_THROWS_WITH(parse("1e20;0;0;0;0;0;0\n", TrajectoryFormat::Putk2Raw),
+                      Contains("traj.txt:1: the frame id is not an integer in [0, 2^53]"));
 }
 
 TEST_CASE("writing is full precision and reads back bit for bit", "[metrics][io]") {

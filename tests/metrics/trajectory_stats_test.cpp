@@ -1,6 +1,6 @@
 // Table 4 of Kraft et al. (2016) from the real PUTK² marker trajectories.
-#include "metrics/trajectory_io.hpp"
 #include "metrics/trajectory_stats.hpp"
+#include "metrics/trajectory_io.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -15,9 +15,8 @@ TEST_CASE("traj stats reproduces Table 4 of Kraft et al. 2016 to 4 decimals", "[
         double length, velocity;
     };
     // Sequence k is trajectory(k+1).txt (SOURCES.md).
-    const Row table4[] = {{2, 1540, 18.7064, 0.1215}, {3, 2564, 31.6145, 0.1233}, {4, 2755, 39.2709, 0.1426},
-                          {5, 2855, 33.3703, 0.1169}, {6, 411, 6.5381, 0.1595},   {7, 170, 6.3842, 0.3778},
-                          {8, 87, 6.4865, 0.7542},    {9, 60, 6.1143, 1.0363}};
+    const Row table4[] = {{2, 1540, 18.7064, 0.1215}, {3, 2564, 31.6145, 0.1233}, {4, 2755, 39.2709, 0.1426}, {5, 2855, 33.3703, 0.1169},
+                          {6, 411, 6.5381, 0.1595},   {7, 170, 6.3842, 0.3778},   {8, 87, 6.4865, 0.7542},    {9, 60, 6.1143, 1.0363}};
     for (const Row& row : table4) {
         ReadOptions o;
         o.format = TrajectoryFormat::Putk2Raw;

@@ -87,8 +87,8 @@ TEST_CASE("put_vo on the four sim-PUTK² exploration paths (Table 5 targets)", "
             REQUIRE(r.evaluation);
             ate[s] = r.evaluation->ate->stats.rmse;
             rpe[s] = r.evaluation->rpe->trans.rmse;
-            WARN(path << " " << sensors[s] << ": ATE " << ate[s] << " m, RPE " << rpe[s] << " m, lost " << r.failed_frames
-                      << ", " << r.mean_ms() << " ms/frame");
+            WARN(path << " " << sensors[s] << ": ATE " << ate[s] << " m, RPE " << rpe[s] << " m, lost " << r.failed_frames << ", "
+                      << r.mean_ms() << " ms/frame");
         }
         CHECK(rpe[0] <= 0.017);
         CHECK(rpe[1] <= 0.011);

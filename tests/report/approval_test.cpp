@@ -21,8 +21,8 @@ namespace fs = std::filesystem;
 
 namespace {
 
-RunRecord record(const std::string& algorithm, const ParamMap& params, const std::string& sequence, const std::string& sensor, uint64_t repeat,
-                 double ate, bool ok = true) {
+RunRecord record(const std::string& algorithm, const ParamMap& params, const std::string& sequence, const std::string& sensor,
+                 uint64_t repeat, double ate, bool ok = true) {
     RunRecord r;
     r.cell.algorithm = r.cell.plugin = algorithm;
     r.cell.params = params;
@@ -41,8 +41,15 @@ RunRecord record(const std::string& algorithm, const ParamMap& params, const std
              {"frames", ok ? 50 : 7},
              {"failed_at_frame", ok ? nlohmann::json(nullptr) : nlohmann::json(7)},
              {"timing",
-              {{"frames", 50}, {"mean_ms", ms}, {"median_ms", ms}, {"p95_ms", ms * 1.5}, {"max_ms", ms * 2}, {"fps", 1000 / ms},
-               {"read_ms_per_frame", 8.5}, {"peak_rss_mb", 70.0}, {"harness_overhead_pct", 0.25},
+              {{"frames", 50},
+               {"mean_ms", ms},
+               {"median_ms", ms},
+               {"p95_ms", ms * 1.5},
+               {"max_ms", ms * 2},
+               {"fps", 1000 / ms},
+               {"read_ms_per_frame", 8.5},
+               {"peak_rss_mb", 70.0},
+               {"harness_overhead_pct", 0.25},
                {"stages", {{{"stage", "detection"}, {"mean_ms", ms / 2}}, {{"stage", "tracking"}, {"mean_ms", ms / 4}}}}}}};
     if (ok) {
         r.metrics["ate.rmse"] = ate;
@@ -64,7 +71,8 @@ std::vector<RunRecord> fixture() {
             for (uint64_t k = 0; k < 2; ++k) {
                 const double v2 = std::string(sensor) == "kinect2" ? 0.5 : 1.0;
                 rs.push_back(record("alpha", {{"k", "1"}}, seq, sensor, k, v2 * (0.010 + 0.001 * static_cast<double>(k))));
-                rs.push_back(record("beta", {}, seq, sensor, k, v2 * (0.020 + 0.002 * static_cast<double>(k)), !(k == 1 && std::string(seq) == "s2")));
+                rs.push_back(record("beta", {}, seq, sensor, k, v2 * (0.020 + 0.002 * static_cast<double>(k)),
+                                    !(k == 1 && std::string(seq) == "s2")));
                 rs.push_back(record("odd | <b>name</b> \\_x_", {}, seq, sensor, k, v2 * 0.015));
             }
     return rs;

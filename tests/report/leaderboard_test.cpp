@@ -1,7 +1,7 @@
 // Rankings honest about noise: bootstrap intervals with a fixed seed, ties where they overlap,
 // criteria summed or averaged as documented, unranked entries with failed cells.
-#include "report/bootstrap.hpp"
 #include "report/leaderboard.hpp"
+#include "report/bootstrap.hpp"
 
 #include <catch2/catch.hpp>
 

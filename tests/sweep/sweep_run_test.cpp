@@ -52,19 +52,41 @@ TEST_CASE("every fault becomes a failed row with its reason, and the sweep compl
     test::TempDir dir;
     const fs::path config = dir.path() / "faults.yaml";
     std::ofstream(config) << "name: faults\n"
-                             "datasets:\n  - {name: tiny, reader: tum, path: " << tiny_sequence().string() << "}\n"
+                             "datasets:\n  - {name: tiny, reader: tum, path: "
+                          << tiny_sequence().string()
+                          << "}\n"
                              "algorithms:\n"
                              "  - {name: healthy, plugin: constant_pose}\n"
-                             "  - {name: segfault, plugin: " << fault("segfault") << "}\n"
-                             "  - {name: abort, plugin: " << fault("abort") << "}\n"
-                             "  - {name: exception, plugin: " << test::fault_plugin("vobench_counter").string() << ", params: {throw_at: 3}}\n"
-                             "  - {name: hang, plugin: " << fault("hang") << "}\n"
-                             "  - {name: memory, plugin: " << fault("memory") << "}\n"
-                             "  - {name: nan_pose, plugin: " << fault("nan_pose") << "}\n"
-                             "  - {name: wrong_abi, plugin: " << fault("wrong_abi") << "}\n"
-                             "  - {name: error_status, plugin: " << fault("error_status") << "}\n"
-                             "  - {name: exit, plugin: " << fault("exit") << "}\n"
-                             "  - {name: stdout_garbage, plugin: " << fault("stdout_garbage") << "}\n"
+                             "  - {name: segfault, plugin: "
+                          << fault("segfault")
+                          << "}\n"
+                             "  - {name: abort, plugin: "
+                          << fault("abort")
+                          << "}\n"
+                             "  - {name: exception, plugin: "
+                          << test::fault_plugin("vobench_counter").string()
+                          << ", params: {throw_at: 3}}\n"
+                             "  - {name: hang, plugin: "
+                          << fault("hang")
+                          << "}\n"
+                             "  - {name: memory, plugin: "
+                          << fault("memory")
+                          << "}\n"
+                             "  - {name: nan_pose, plugin: "
+                          << fault("nan_pose")
+                          << "}\n"
+                             "  - {name: wrong_abi, plugin: "
+                          << fault("wrong_abi")
+                          << "}\n"
+                             "  - {name: error_status, plugin: "
+                          << fault("error_status")
+                          << "}\n"
+                             "  - {name: exit, plugin: "
+                          << fault("exit")
+                          << "}\n"
+                             "  - {name: stdout_garbage, plugin: "
+                          << fault("stdout_garbage")
+                          << "}\n"
                              "limits: {timeout: 4, memory_mb: 512}\n"
                              "criteria: ['failed_cells == 0']\n";
     const fs::path out = dir.path() / "out";
@@ -166,7 +188,8 @@ TEST_CASE("two cells at a time (-j 2) compute exactly what one at a time does", 
     test::TempDir dir;
     const fs::path config = dir.path() / "s.yaml";
     std::ofstream(config) << "datasets:\n  - {name: a, reader: tum, path: " << tiny_sequence("kinect1", "speed2").string() << "}\n"
-                          << "  - {name: b, reader: tum, path: " << tiny_sequence("kinect2", "speed3").string() << "}\n"
+                          << "  - {name: b, reader: tum, path: " << tiny_sequence("kinect2", "speed3").string()
+                          << "}\n"
                              "algorithms:\n  - {plugin: put_vo}\n  - {plugin: orb_matching}\nrepeats: 2\nframes: 6\n";
     std::string log;
     REQUIRE(run_sweep(config, "--out " + (dir.path() / "j1").string() + " -j 1", log) == 0);
@@ -178,6 +201,7 @@ TEST_CASE("two cells at a time (-j 2) compute exactly what one at a time does", 
         const std::string id = c["id"];
         CHECK(json_of(dir.path() / "j1" / "runs" / id / "run.json")["frames"] == 6);  // frames: 6 caps every sequence
         CHECK(slurp(dir.path() / "j1" / "runs" / id / "trajectory.txt") == slurp(dir.path() / "j2" / "runs" / id / "trajectory.txt"));
-        CHECK(json_of(dir.path() / "j1" / "runs" / id / "run.json")["evaluation"] == json_of(dir.path() / "j2" / "runs" / id / "run.json")["evaluation"]);
+        CHECK(json_of(dir.path() / "j1" / "runs" / id / "run.json")["evaluation"] ==
+              json_of(dir.path() / "j2" / "runs" / id / "run.json")["evaluation"]);
     }
 }

@@ -21,7 +21,9 @@ struct TestRig {
         m.base = Eigen::Vector3f(0.6f, 0.6f, 0.6f);
         scene.materials = {m, m, m, m, m, m, m};
         scene.boxes.push_back({Eigen::Vector3d(-20, -20, -20), Eigen::Vector3d(wall, 20, 20), 0, true});
-        if (near > 0) scene.boxes.push_back({Eigen::Vector3d(near, 0.0, -20), Eigen::Vector3d(near + 0.02, 20, 20), 6, false});  // thin: no side face in view
+        if (near > 0)
+            scene.boxes.push_back(
+                {Eigen::Vector3d(near, 0.0, -20), Eigen::Vector3d(near + 0.02, 20, 20), 6, false});  // thin: no side face in view
         Eigen::Matrix3d R;
         R.col(0) = Eigen::Vector3d(0, -1, 0);  // camera x
         R.col(1) = Eigen::Vector3d(0, 0, 1);   // camera y
@@ -110,8 +112,10 @@ TEST_CASE("at a step edge Kinect v1 loses more depth, and Kinect v2 shows flying
             for (int u = edge - half_width; u <= edge + half_width; ++u) {
                 ++band;
                 const float z = d.at<float>(v, u);
-                if (!(z > 0)) ++missing;
-                else if (z > 1.6f && z < 2.85f) ++flying;
+                if (!(z > 0))
+                    ++missing;
+                else if (z > 1.6f && z < 2.85f)
+                    ++flying;
             }
     };
     int m1, f1, b1, m2, f2, b2;

@@ -1,5 +1,5 @@
-#include "metrics/trajectory_io.hpp"
 #include "synth/sequence_writer.hpp"
+#include "metrics/trajectory_io.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>

@@ -94,8 +94,7 @@ TEST_CASE("gnuplot: every hostile title is one string literal, and gnuplot runs 
     ChildResult r;
     try {
         r = run_program({"sh", "-c", "cd '" + dir.string() + "' && gnuplot hostile.gp"}, 60);
-    } catch (const std::exception&) {
-    }
+    } catch (const std::exception&) {}
     if (!(r.exited && r.exit_code == 0) && r.output.find("not found") != std::string::npos) {
         WARN("gnuplot is not installed: the run of the hostile script was skipped");
         return;
@@ -123,14 +122,17 @@ TEST_CASE("Markdown: no newline, no unescaped |, no inline HTML, links or code s
 }
 
 TEST_CASE("LaTeX: only the text commands of the escaping, never \\input or \\write18", "[util][escape]") {
-    const std::set<std::string> allowed = {"textbackslash", "textasciitilde", "textasciicircum", "textless", "textgreater", "textbar", "textquotedbl"};
+    const std::set<std::string> allowed = {"textbackslash", "textasciitilde", "textasciicircum", "textless",
+                                           "textgreater",   "textbar",        "textquotedbl"};
     for (const std::string& s : hostile()) {
         const std::string t = latex_text(s);
         CHECK(t.find('\n') == std::string::npos);
         const std::regex command(R"(\\([A-Za-z]+))");
-        for (auto it = std::sregex_iterator(t.begin(), t.end(), command); it != std::sregex_iterator(); ++it) CHECK(allowed.count((*it)[1]) == 1);
+        for (auto it = std::sregex_iterator(t.begin(), t.end(), command); it != std::sregex_iterator(); ++it)
+            CHECK(allowed.count((*it)[1]) == 1);
         // Braces only as the {} after a text command, or escaped.
-        const std::string stripped = std::regex_replace(std::regex_replace(t, std::regex(R"(\\[A-Za-z]+\{\})"), ""), std::regex(R"(\\[{}])"), "");
+        const std::string stripped =
+            std::regex_replace(std::regex_replace(t, std::regex(R"(\\[A-Za-z]+\{\})"), ""), std::regex(R"(\\[{}])"), "");
         CHECK(stripped.find('{') == std::string::npos);
         CHECK(stripped.find('}') == std::string::npos);
         CHECK(latex_comment(s).find('\n') == std::string::npos);

@@ -51,8 +51,14 @@ private:
 
 // Each returns false when `text` is not a complete, valid value of the type.
 inline bool parse_bool(const std::string& text, bool& out) {
-    if (text == "true" || text == "1" || text == "on" || text == "yes") { out = true; return true; }
-    if (text == "false" || text == "0" || text == "off" || text == "no") { out = false; return true; }
+    if (text == "true" || text == "1" || text == "on" || text == "yes") {
+        out = true;
+        return true;
+    }
+    if (text == "false" || text == "0" || text == "off" || text == "no") {
+        out = false;
+        return true;
+    }
     return false;
 }
 
@@ -99,31 +105,28 @@ struct Param {
 // reason it is not.
 inline std::string check_param_value(const Param& p, const std::string& text) {
     switch (p.type) {
-    case VOBENCH_PARAM_BOOL: {
-        bool b;
-        return parse_bool(text, b) ? "" : "'" + text + "' is not a boolean (true/false)";
-    }
-    case VOBENCH_PARAM_INT: {
-        long long v;
-        if (!parse_int(text, v)) return "'" + text + "' is not an integer";
-        if (double(v) < p.min_value || double(v) > p.max_value)
-            return "'" + text + "' is outside [" + std::to_string((long long)p.min_value) + ", " +
-                   std::to_string((long long)p.max_value) + "]";
-        return "";
-    }
-    case VOBENCH_PARAM_DOUBLE: {
-        double v;
-        if (!parse_double(text, v)) return "'" + text + "' is not a finite number";
-        if (v < p.min_value || v > p.max_value)
-            return "'" + text + "' is outside [" + std::to_string(p.min_value) + ", " + std::to_string(p.max_value) + "]";
-        return "";
-    }
-    case VOBENCH_PARAM_ENUM:
-        return is_choice(text, p.choices) ? "" : "'" + text + "' is not one of " + p.choices;
-    case VOBENCH_PARAM_STRING:
-        return "";
-    default:
-        return "unknown parameter type";
+        case VOBENCH_PARAM_BOOL: {
+            bool b;
+            return parse_bool(text, b) ? "" : "'" + text + "' is not a boolean (true/false)";
+        }
+        case VOBENCH_PARAM_INT: {
+            long long v;
+            if (!parse_int(text, v)) return "'" + text + "' is not an integer";
+            if (double(v) < p.min_value || double(v) > p.max_value)
+                return "'" + text + "' is outside [" + std::to_string((long long)p.min_value) + ", " +
+                       std::to_string((long long)p.max_value) + "]";
+            return "";
+        }
+        case VOBENCH_PARAM_DOUBLE: {
+            double v;
+            if (!parse_double(text, v)) return "'" + text + "' is not a finite number";
+            if (v < p.min_value || v > p.max_value)
+                return "'" + text + "' is outside [" + std::to_string(p.min_value) + ", " + std::to_string(p.max_value) + "]";
+            return "";
+        }
+        case VOBENCH_PARAM_ENUM: return is_choice(text, p.choices) ? "" : "'" + text + "' is not one of " + p.choices;
+        case VOBENCH_PARAM_STRING: return "";
+        default: return "unknown parameter type";
     }
 }
 
@@ -208,9 +211,7 @@ public:
     void counter(const char* name, double value) const {
         if (has(&vobench_host_services::counter)) services_->counter(services_->context, name, value);
     }
-    bool cancelled() const {
-        return has(&vobench_host_services::is_cancelled) && services_->is_cancelled(services_->context) != 0;
-    }
+    bool cancelled() const { return has(&vobench_host_services::is_cancelled) && services_->is_cancelled(services_->context) != 0; }
 
     // Times a stage for the lifetime of the object: { Host::Stage s(host(), "detection"); ... }
     class Stage {
@@ -230,8 +231,7 @@ private:
     template <typename F>
     bool has(F vobench_host_services::*member) const {
         if (services_ == nullptr) return false;
-        const std::size_t offset = reinterpret_cast<std::size_t>(
-            &(reinterpret_cast<const vobench_host_services*>(0)->*member));
+        const std::size_t offset = reinterpret_cast<std::size_t>(&(reinterpret_cast<const vobench_host_services*>(0)->*member));
         return services_->struct_size >= offset + sizeof(F) && services_->*member != nullptr;
     }
     const vobench_host_services* services_;
@@ -417,8 +417,8 @@ struct OdometryBridge : BridgeBase<Impl, vobench_odometry, VOBENCH_KIND_ODOMETRY
         return guarded(s->error, [&] { s->impl->reset(); });
     }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        static const vobench_odometry_api table = {sizeof(vobench_odometry_api), &Base::create, &start, &process,
-                                                   &reset, &Base::last_error, &Base::destroy};
+        static const vobench_odometry_api table = {
+            sizeof(vobench_odometry_api), &Base::create, &start, &process, &reset, &Base::last_error, &Base::destroy};
         return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::odometry);
     }
 };
@@ -451,8 +451,8 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
         });
     }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &Base::create, &open, &describe,
-                                                  &read_frame, &Base::last_error, &Base::destroy};
+        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &Base::create, &open, &describe, &read_frame,
+                                                  &Base::last_error,           &Base::destroy};
         return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::dataset);
     }
 };
@@ -461,16 +461,16 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
 }  // namespace vobench::sdk
 
 // Defines the plugin's entry symbol for an Odometry (resp. Dataset) subclass with a static info().
-#define VOBENCH_ODOMETRY_PLUGIN(Class)                                                             \
-    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(            \
-        uint32_t host_abi_version, uint32_t host_api_version) {                                    \
-        return ::vobench::sdk::detail::OdometryBridge<Class>::entry(host_abi_version, host_api_version); \
+#define VOBENCH_ODOMETRY_PLUGIN(Class)                                                                              \
+    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version,   \
+                                                                                       uint32_t host_api_version) { \
+        return ::vobench::sdk::detail::OdometryBridge<Class>::entry(host_abi_version, host_api_version);            \
     }
 
-#define VOBENCH_DATASET_PLUGIN(Class)                                                              \
-    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(            \
-        uint32_t host_abi_version, uint32_t host_api_version) {                                    \
-        return ::vobench::sdk::detail::DatasetBridge<Class>::entry(host_abi_version, host_api_version); \
+#define VOBENCH_DATASET_PLUGIN(Class)                                                                               \
+    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version,   \
+                                                                                       uint32_t host_api_version) { \
+        return ::vobench::sdk::detail::DatasetBridge<Class>::entry(host_abi_version, host_api_version);             \
     }
 
 #endif  // VOBENCH_PLUGIN_HPP

@@ -79,48 +79,46 @@ extern "C" {
 #endif
 
 /* True when a struct filled by the other side, whose first member is struct_size, contains `field`. */
-#define VOBENCH_HAS_FIELD(ptr, type, field) \
-    ((ptr)->struct_size >= offsetof(type, field) + sizeof(((type*)0)->field))
+#define VOBENCH_HAS_FIELD(ptr, type, field) ((ptr)->struct_size >= offsetof(type, field) + sizeof(((type*)0)->field))
 
 /* The i-th element of an array of structs whose elements all carry the same struct_size. */
-#define VOBENCH_ARRAY_AT(base, type, i) \
-    ((const type*)((const char*)(base) + (size_t)(i) * (size_t)((base)->struct_size)))
+#define VOBENCH_ARRAY_AT(base, type, i) ((const type*)((const char*)(base) + (size_t)(i) * (size_t)((base)->struct_size)))
 
 /* ===== Status codes ============================================================================= */
 
 typedef int32_t vobench_status;
-#define VOBENCH_OK 0                /* success */
-#define VOBENCH_ERROR 1             /* a failure not covered below; see last_error() */
-#define VOBENCH_INVALID_ARGUMENT 2  /* a parameter, option or argument is malformed or out of range */
-#define VOBENCH_IO_ERROR 3          /* a file is missing, unreadable, corrupt or malformed */
-#define VOBENCH_OUT_OF_RANGE 4      /* e.g. a frame index past the end of the sequence */
-#define VOBENCH_UNSUPPORTED 5       /* the plugin does not offer this (e.g. a sensor it cannot read) */
-#define VOBENCH_CANCELLED 6         /* the host's cancel flag was seen */
-#define VOBENCH_NO_MEMORY 7         /* an allocation failed */
+#define VOBENCH_OK 0               /* success */
+#define VOBENCH_ERROR 1            /* a failure not covered below; see last_error() */
+#define VOBENCH_INVALID_ARGUMENT 2 /* a parameter, option or argument is malformed or out of range */
+#define VOBENCH_IO_ERROR 3         /* a file is missing, unreadable, corrupt or malformed */
+#define VOBENCH_OUT_OF_RANGE 4     /* e.g. a frame index past the end of the sequence */
+#define VOBENCH_UNSUPPORTED 5      /* the plugin does not offer this (e.g. a sensor it cannot read) */
+#define VOBENCH_CANCELLED 6        /* the host's cancel flag was seen */
+#define VOBENCH_NO_MEMORY 7        /* an allocation failed */
 
 /* ===== Descriptor: what a plugin is, readable without creating anything ========================= */
 
 typedef int32_t vobench_plugin_kind;
-#define VOBENCH_KIND_DATASET 1   /* a dataset reader: yields RGB-D frames and ground truth */
-#define VOBENCH_KIND_ODOMETRY 2  /* an odometry algorithm: consumes frames, yields poses */
+#define VOBENCH_KIND_DATASET 1  /* a dataset reader: yields RGB-D frames and ground truth */
+#define VOBENCH_KIND_ODOMETRY 2 /* an odometry algorithm: consumes frames, yields poses */
 
 typedef int32_t vobench_param_type;
-#define VOBENCH_PARAM_BOOL 1    /* "true"/"false" (also 1/0, on/off, yes/no) */
-#define VOBENCH_PARAM_INT 2     /* decimal integer, within [min_value, max_value] */
-#define VOBENCH_PARAM_DOUBLE 3  /* decimal number, finite, within [min_value, max_value] */
-#define VOBENCH_PARAM_STRING 4  /* any text */
-#define VOBENCH_PARAM_ENUM 5    /* one of the words of `choices` */
+#define VOBENCH_PARAM_BOOL 1   /* "true"/"false" (also 1/0, on/off, yes/no) */
+#define VOBENCH_PARAM_INT 2    /* decimal integer, within [min_value, max_value] */
+#define VOBENCH_PARAM_DOUBLE 3 /* decimal number, finite, within [min_value, max_value] */
+#define VOBENCH_PARAM_STRING 4 /* any text */
+#define VOBENCH_PARAM_ENUM 5   /* one of the words of `choices` */
 
 /* One tunable parameter. Every pointer is [static]. */
 typedef struct vobench_param_desc {
     uint32_t struct_size;
-    const char* name;           /* identifier: [a-z0-9_]+ ; unique within the plugin */
+    const char* name; /* identifier: [a-z0-9_]+ ; unique within the plugin */
     vobench_param_type type;
-    const char* default_value;  /* text form of the default; must itself be valid */
-    double min_value;           /* INT/DOUBLE: inclusive range; ignored for other types */
+    const char* default_value; /* text form of the default; must itself be valid */
+    double min_value;          /* INT/DOUBLE: inclusive range; ignored for other types */
     double max_value;
-    const char* choices;        /* ENUM: words separated by '|', e.g. "rgbd|icp"; else NULL */
-    const char* help;           /* one sentence for `vobench plugins info` */
+    const char* choices; /* ENUM: words separated by '|', e.g. "rgbd|icp"; else NULL */
+    const char* help;    /* one sentence for `vobench plugins info` */
 } vobench_param_desc;
 
 struct vobench_dataset_api;
@@ -129,14 +127,14 @@ struct vobench_odometry_api;
 /* The static descriptor the entry function returns. Every pointer is [static]. */
 typedef struct vobench_plugin_descriptor {
     uint32_t struct_size;
-    uint32_t abi_version;       /* must be VOBENCH_ABI_VERSION */
-    uint32_t api_version;       /* the API version the plugin was built against */
+    uint32_t abi_version; /* must be VOBENCH_ABI_VERSION */
+    uint32_t api_version; /* the API version the plugin was built against */
     vobench_plugin_kind kind;
-    const char* name;           /* identifier: [a-z0-9_]+, what configs and the CLI call it */
-    const char* version;        /* the plugin's own version, e.g. "1.2.0" */
-    const char* description;    /* one or two sentences */
-    const char* license;        /* SPDX identifier, e.g. "MIT" */
-    const char* url;            /* home page or paper; may be NULL */
+    const char* name;        /* identifier: [a-z0-9_]+, what configs and the CLI call it */
+    const char* version;     /* the plugin's own version, e.g. "1.2.0" */
+    const char* description; /* one or two sentences */
+    const char* license;     /* SPDX identifier, e.g. "MIT" */
+    const char* url;         /* home page or paper; may be NULL */
     uint32_t param_count;
     const vobench_param_desc* params; /* param_count elements (stride: params->struct_size); NULL if 0 */
     /* Exactly one of these is non-NULL, according to `kind`. */
@@ -147,8 +145,7 @@ typedef struct vobench_plugin_descriptor {
 /* The entry point. The host passes the ABI and API versions it speaks. The plugin returns its
  * descriptor ([static]) or NULL when it cannot serve this host (e.g. it needs a newer API).
  * Thread-safe; must not allocate per call; must not fail in any other way. */
-typedef const vobench_plugin_descriptor* (*vobench_plugin_entry_fn)(uint32_t host_abi_version,
-                                                                     uint32_t host_api_version);
+typedef const vobench_plugin_descriptor* (*vobench_plugin_entry_fn)(uint32_t host_abi_version, uint32_t host_api_version);
 
 /* ===== Host services: what the host offers every instance ======================================= */
 
@@ -178,19 +175,19 @@ typedef struct vobench_host_services {
 /* ===== Images, frames, cameras, poses =========================================================== */
 
 typedef int32_t vobench_pixel_format;
-#define VOBENCH_PIXEL_RGB8 1       /* 3 bytes per pixel, R G B */
-#define VOBENCH_PIXEL_BGR8 2       /* 3 bytes per pixel, B G R (OpenCV's order) */
-#define VOBENCH_PIXEL_GRAY8 3      /* 1 byte per pixel */
-#define VOBENCH_PIXEL_DEPTH_U16 4  /* uint16 per pixel, metres = value * depth_scale, 0 = no reading */
-#define VOBENCH_PIXEL_DEPTH_F32 5  /* float per pixel, metres = value * depth_scale, 0 or NaN = none */
+#define VOBENCH_PIXEL_RGB8 1      /* 3 bytes per pixel, R G B */
+#define VOBENCH_PIXEL_BGR8 2      /* 3 bytes per pixel, B G R (OpenCV's order) */
+#define VOBENCH_PIXEL_GRAY8 3     /* 1 byte per pixel */
+#define VOBENCH_PIXEL_DEPTH_U16 4 /* uint16 per pixel, metres = value * depth_scale, 0 = no reading */
+#define VOBENCH_PIXEL_DEPTH_F32 5 /* float per pixel, metres = value * depth_scale, 0 or NaN = none */
 
 typedef struct vobench_image {
     uint32_t struct_size;
     int32_t width;
     int32_t height;
-    int32_t stride_bytes;          /* bytes from one row to the next, >= width * bytes per pixel */
+    int32_t stride_bytes; /* bytes from one row to the next, >= width * bytes per pixel */
     vobench_pixel_format format;
-    const void* data;              /* lifetime: that of the frame it belongs to */
+    const void* data; /* lifetime: that of the frame it belongs to */
 } vobench_image;
 
 /* One RGB-D frame. In API 1, depth is registered to the colour camera and has the colour image's
@@ -200,17 +197,17 @@ typedef struct vobench_image {
  * plugin is [host-owned] and borrowed for the duration of process() only: copy what you keep. */
 typedef struct vobench_frame {
     uint32_t struct_size;
-    uint64_t index;                /* 0-based position in the sequence */
-    double timestamp;              /* colour stamp, seconds (or the index, for clock-less data) */
-    double depth_timestamp;        /* stamp of the depth image paired with it */
-    const vobench_image* color;    /* never NULL */
-    const vobench_image* depth;    /* never NULL */
-    double depth_scale;            /* metres per depth unit, e.g. 1/5000 for TUM, 1/1000 for PUTK² */
+    uint64_t index;             /* 0-based position in the sequence */
+    double timestamp;           /* colour stamp, seconds (or the index, for clock-less data) */
+    double depth_timestamp;     /* stamp of the depth image paired with it */
+    const vobench_image* color; /* never NULL */
+    const vobench_image* depth; /* never NULL */
+    double depth_scale;         /* metres per depth unit, e.g. 1/5000 for TUM, 1/1000 for PUTK² */
 } vobench_frame;
 
 typedef int32_t vobench_distortion_model;
-#define VOBENCH_DISTORTION_NONE 0      /* images are already undistorted */
-#define VOBENCH_DISTORTION_OPENCV 1    /* OpenCV order k1 k2 p1 p2 k3 k4 k5 k6 (rational model) */
+#define VOBENCH_DISTORTION_NONE 0   /* images are already undistorted */
+#define VOBENCH_DISTORTION_OPENCV 1 /* OpenCV order k1 k2 p1 p2 k3 k4 k5 k6 (rational model) */
 
 /* A pinhole camera. fx or fy may be negative where a data set's convention flips an axis; the
  * readers in this repository present positive focal lengths (see each reader's README). */
@@ -218,17 +215,17 @@ typedef struct vobench_camera {
     uint32_t struct_size;
     int32_t width;
     int32_t height;
-    double fx, fy, cx, cy;         /* pixels */
+    double fx, fy, cx, cy; /* pixels */
     vobench_distortion_model distortion_model;
-    int32_t distortion_count;      /* 0..8 meaningful entries of `distortion` */
+    int32_t distortion_count; /* 0..8 meaningful entries of `distortion` */
     double distortion[8];
 } vobench_camera;
 
 typedef struct vobench_pose {
     uint32_t struct_size;
-    double timestamp;              /* seconds */
-    double tx, ty, tz;             /* metres, camera-to-world */
-    double qx, qy, qz, qw;         /* unit quaternion, camera-to-world */
+    double timestamp;      /* seconds */
+    double tx, ty, tz;     /* metres, camera-to-world */
+    double qx, qy, qz, qw; /* unit quaternion, camera-to-world */
 } vobench_pose;
 
 /* Parameters as text, validated by the host against the descriptor's table before create().
@@ -247,12 +244,12 @@ typedef struct vobench_dataset vobench_dataset; /* opaque, [plugin-owned] */
 /* What a reader says about an open sequence. [plugin-owned], valid until destroy(). */
 typedef struct vobench_sequence_info {
     uint32_t struct_size;
-    const char* name;              /* sequence name, e.g. "rgbd_dataset_freiburg1_rpy" */
-    const char* sensor;            /* e.g. "kinect1", "kinect2", "xtion", "synthetic" */
-    const vobench_camera* camera;  /* colour camera, the frame geometry delivered to plugins */
-    int32_t depth_width;           /* the depth sensor's native size before registration */
+    const char* name;             /* sequence name, e.g. "rgbd_dataset_freiburg1_rpy" */
+    const char* sensor;           /* e.g. "kinect1", "kinect2", "xtion", "synthetic" */
+    const vobench_camera* camera; /* colour camera, the frame geometry delivered to plugins */
+    int32_t depth_width;          /* the depth sensor's native size before registration */
     int32_t depth_height;
-    double depth_scale;            /* metres per depth unit of delivered frames */
+    double depth_scale; /* metres per depth unit of delivered frames */
     uint64_t frame_count;
     /* Ground truth: gt_count poses, 8 doubles each: t tx ty tz qx qy qz qw (camera-to-world, TUM).
      * NULL when the sequence has none. Never given to odometry plugins by the host. */
@@ -289,16 +286,17 @@ typedef struct vobench_dataset_api {
 typedef struct vobench_odometry vobench_odometry; /* opaque, [plugin-owned] */
 
 typedef int32_t vobench_tracking_status;
-#define VOBENCH_TRACKING_OK 0      /* the pose is an estimate for this frame */
-#define VOBENCH_TRACKING_LOST 1    /* tracking failed at this frame; the pose is the plugin's best
-                                    * guess (often the last good one) and the plugin will try to go on */
-#define VOBENCH_TRACKING_FAILED 2  /* the plugin cannot go on without reset(); the pose is the last one */
+#define VOBENCH_TRACKING_OK 0 /* the pose is an estimate for this frame */
+#define VOBENCH_TRACKING_LOST                                                                     \
+    1                             /* tracking failed at this frame; the pose is the plugin's best \
+                                   * guess (often the last good one) and the plugin will try to go on */
+#define VOBENCH_TRACKING_FAILED 2 /* the plugin cannot go on without reset(); the pose is the last one */
 
 typedef struct vobench_odometry_config {
     uint32_t struct_size;
-    const vobench_camera* camera;  /* [host-owned], read during start() only: copy it */
-    const vobench_params* params;  /* [host-owned], read during start() only */
-    uint64_t seed;                 /* for any randomness (RANSAC ...): same seed, same trajectory */
+    const vobench_camera* camera; /* [host-owned], read during start() only: copy it */
+    const vobench_params* params; /* [host-owned], read during start() only */
+    uint64_t seed;                /* for any randomness (RANSAC ...): same seed, same trajectory */
 } vobench_odometry_config;
 
 typedef struct vobench_odometry_api {
@@ -312,8 +310,7 @@ typedef struct vobench_odometry_api {
      * the fields it covers; the first frame's pose defines the world frame, usually identity) and the
      * tracking status into *status. A non-OK return is an error that ends the run. This is the call the
      * host times. */
-    vobench_status (*process)(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose,
-                              vobench_tracking_status* status);
+    vobench_status (*process)(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose, vobench_tracking_status* status);
     /* Forget all state but the configuration (the next frame starts a new world frame).
      * May be NULL when the plugin cannot reset. */
     vobench_status (*reset)(vobench_odometry* self);

@@ -192,21 +192,20 @@ int run_conformance(const ConformanceOptions& options, std::ostream& out) {
         return 1;
     }
     const vobench_plugin_descriptor& d = plugin->descriptor();
-    r.pass(std::string("entry ") + VOBENCH_ENTRY_SYMBOL + ", descriptor valid: " + d.name + " " + d.version + " (" +
-           kind_name(d.kind) + ", API " + std::to_string(d.api_version) + ", " + std::to_string(d.param_count) +
-           " parameters)");
+    r.pass(std::string("entry ") + VOBENCH_ENTRY_SYMBOL + ", descriptor valid: " + d.name + " " + d.version + " (" + kind_name(d.kind) +
+           ", API " + std::to_string(d.api_version) + ", " + std::to_string(d.param_count) + " parameters)");
     r.check(plugin->entry()(VOBENCH_ABI_VERSION, VOBENCH_API_VERSION) == &d, "entry returns the same descriptor twice",
             "a different pointer the second time");
     r.check(plugin->entry()(VOBENCH_ABI_VERSION + 1, VOBENCH_API_VERSION) == nullptr, "entry refuses another ABI (NULL)",
             "it returned a descriptor for ABI " + std::to_string(VOBENCH_ABI_VERSION + 1));
-    r.check(plugin->entry()(VOBENCH_ABI_VERSION, VOBENCH_API_VERSION + 100) != nullptr,
-            "entry serves a newer host API", "it returned NULL for a newer API version");
-    for (const sdk::Param& p : plugin->params())
-        r.check(!p.help.empty(), "parameter '" + p.name + "' documented", "no help text");
-    if (d.kind == VOBENCH_KIND_ODOMETRY) check_odometry(plugin, r);
-    else check_dataset(plugin, options, r);
-    out << (r.failures() == 0 ? "PASS " : "FAIL ") << options.library.string() << " (" << r.failures() << " failures)"
-        << std::endl;
+    r.check(plugin->entry()(VOBENCH_ABI_VERSION, VOBENCH_API_VERSION + 100) != nullptr, "entry serves a newer host API",
+            "it returned NULL for a newer API version");
+    for (const sdk::Param& p : plugin->params()) r.check(!p.help.empty(), "parameter '" + p.name + "' documented", "no help text");
+    if (d.kind == VOBENCH_KIND_ODOMETRY)
+        check_odometry(plugin, r);
+    else
+        check_dataset(plugin, options, r);
+    out << (r.failures() == 0 ? "PASS " : "FAIL ") << options.library.string() << " (" << r.failures() << " failures)" << std::endl;
     if (!options.verdict_file.empty()) write_file_atomic(options.verdict_file, r.failures() == 0 ? "0" : "1");
     return r.failures() == 0 ? 0 : 1;
 }
@@ -230,7 +229,8 @@ int check_in_child(const ConformanceOptions& options, std::ostream& out) {
     }
     std::filesystem::remove(verdict, ec);
     out << clean_text(child.output, true);
-    if (child.exited && (child.exit_code == 0 || child.exit_code == 1) && written == std::to_string(child.exit_code)) return child.exit_code;
+    if (child.exited && (child.exit_code == 0 || child.exit_code == 1) && written == std::to_string(child.exit_code))
+        return child.exit_code;
     // The last step line the child printed is where the plugin was.
     std::string last;
     std::size_t pos = 0;
@@ -240,8 +240,10 @@ int check_in_child(const ConformanceOptions& options, std::ostream& out) {
         if (end > pos && child.output.compare(pos, 2, "..") == 0) last = child.output.substr(pos, end - pos);
         pos = end + 1;
     }
-    const std::string how = child.exited && written.empty() ? "the process ended (" + child.describe() + ") inside a plugin call" : child.describe();
-    out << "FAIL  " << options.library.string() << ": " << how << (last.size() > 6 ? " — last step: " + clean_text(last.substr(6)) : "") << "\n"
+    const std::string how =
+        child.exited && written.empty() ? "the process ended (" + child.describe() + ") inside a plugin call" : child.describe();
+    out << "FAIL  " << options.library.string() << ": " << how << (last.size() > 6 ? " — last step: " + clean_text(last.substr(6)) : "")
+        << "\n"
         << "FAIL " << options.library.string() << std::endl;
     return 1;
 }

@@ -24,10 +24,10 @@ void HostContext::on_log(void* context, vobench_log_level level, const char* mes
     auto* self = static_cast<HostContext*>(context);
     const char* text = message ? message : "";
     switch (level) {
-    case VOBENCH_LOG_DEBUG: spdlog::debug("[{}] {}", self->plugin_name_, text); break;
-    case VOBENCH_LOG_INFO: spdlog::info("[{}] {}", self->plugin_name_, text); break;
-    case VOBENCH_LOG_WARNING: spdlog::warn("[{}] {}", self->plugin_name_, text); break;
-    default: spdlog::error("[{}] {}", self->plugin_name_, text); break;
+        case VOBENCH_LOG_DEBUG: spdlog::debug("[{}] {}", self->plugin_name_, text); break;
+        case VOBENCH_LOG_INFO: spdlog::info("[{}] {}", self->plugin_name_, text); break;
+        case VOBENCH_LOG_WARNING: spdlog::warn("[{}] {}", self->plugin_name_, text); break;
+        default: spdlog::error("[{}] {}", self->plugin_name_, text); break;
     }
 }
 
@@ -47,7 +47,10 @@ void HostContext::on_stage_end(void* context, const char* stage) {
         const int64_t ns = std::chrono::duration_cast<std::chrono::nanoseconds>(now - it->start).count();
         self->open_.erase(std::next(it).base());
         for (auto& [n, total] : self->stages_)
-            if (n == name) { total += ns; return; }
+            if (n == name) {
+                total += ns;
+                return;
+            }
         if (self->stages_.size() <= kMaxTracked) self->stages_.emplace_back(name, ns);
         return;
     }
@@ -57,14 +60,15 @@ void HostContext::on_counter(void* context, const char* name, double value) {
     auto* self = static_cast<HostContext*>(context);
     const std::string key = name ? name : "";
     for (auto& [n, v] : self->counters_)
-        if (n == key) { v = value; return; }
+        if (n == key) {
+            v = value;
+            return;
+        }
     // Past the limit one more name is kept, so that the host sees the limit crossed and fails the
     // run; the rest are dropped, so a call that emits 80,000 names costs no more than 257.
     if (self->counters_.size() <= kMaxTracked) self->counters_.emplace_back(key, value);
 }
 
-int32_t HostContext::on_is_cancelled(void* context) {
-    return static_cast<HostContext*>(context)->cancelled_.load() ? 1 : 0;
-}
+int32_t HostContext::on_is_cancelled(void* context) { return static_cast<HostContext*>(context)->cancelled_.load() ? 1 : 0; }
 
 }  // namespace vobench

@@ -8,15 +8,15 @@ namespace vobench {
 
 const char* status_name(vobench_status status) {
     switch (status) {
-    case VOBENCH_OK: return "ok";
-    case VOBENCH_ERROR: return "error";
-    case VOBENCH_INVALID_ARGUMENT: return "invalid argument";
-    case VOBENCH_IO_ERROR: return "I/O error";
-    case VOBENCH_OUT_OF_RANGE: return "out of range";
-    case VOBENCH_UNSUPPORTED: return "unsupported";
-    case VOBENCH_CANCELLED: return "cancelled";
-    case VOBENCH_NO_MEMORY: return "out of memory";
-    default: return "unknown status";
+        case VOBENCH_OK: return "ok";
+        case VOBENCH_ERROR: return "error";
+        case VOBENCH_INVALID_ARGUMENT: return "invalid argument";
+        case VOBENCH_IO_ERROR: return "I/O error";
+        case VOBENCH_OUT_OF_RANGE: return "out of range";
+        case VOBENCH_UNSUPPORTED: return "unsupported";
+        case VOBENCH_CANCELLED: return "cancelled";
+        case VOBENCH_NO_MEMORY: return "out of memory";
+        default: return "unknown status";
     }
 }
 
@@ -28,12 +28,11 @@ void validate_params(const PluginInfo& plugin, const ParamMap& params) {
         if (found == nullptr) {
             std::string known;
             for (const sdk::Param& p : plugin.params) known += (known.empty() ? "" : ", ") + p.name;
-            throw std::invalid_argument("plugin '" + plugin.name + "' has no parameter '" + key + "' (it has: " +
-                                        (known.empty() ? "none" : known) + ")");
+            throw std::invalid_argument("plugin '" + plugin.name + "' has no parameter '" + key +
+                                        "' (it has: " + (known.empty() ? "none" : known) + ")");
         }
         const std::string why = sdk::check_param_value(*found, value);
-        if (!why.empty())
-            throw std::invalid_argument("plugin '" + plugin.name + "', parameter '" + key + "': " + why);
+        if (!why.empty()) throw std::invalid_argument("plugin '" + plugin.name + "', parameter '" + key + "': " + why);
     }
 }
 
@@ -58,11 +57,12 @@ namespace {
 
 int bytes_per_pixel(vobench_pixel_format f) {
     switch (f) {
-    case VOBENCH_PIXEL_RGB8: case VOBENCH_PIXEL_BGR8: return 3;
-    case VOBENCH_PIXEL_GRAY8: return 1;
-    case VOBENCH_PIXEL_DEPTH_U16: return 2;
-    case VOBENCH_PIXEL_DEPTH_F32: return 4;
-    default: return 0;
+        case VOBENCH_PIXEL_RGB8:
+        case VOBENCH_PIXEL_BGR8: return 3;
+        case VOBENCH_PIXEL_GRAY8: return 1;
+        case VOBENCH_PIXEL_DEPTH_U16: return 2;
+        case VOBENCH_PIXEL_DEPTH_F32: return 4;
+        default: return 0;
     }
 }
 
@@ -73,7 +73,8 @@ std::string image_problem(const vobench_image& im, const vobench_camera& camera,
     if (im.width != camera.width || im.height != camera.height)
         return std::string(what) + " is " + std::to_string(im.width) + "x" + std::to_string(im.height) + ", the camera " +
                std::to_string(camera.width) + "x" + std::to_string(camera.height);
-    if (im.data == nullptr || im.stride_bytes < im.width * bpp) return std::string(what) + " has no data or a stride below width x pixel size";
+    if (im.data == nullptr || im.stride_bytes < im.width * bpp)
+        return std::string(what) + " has no data or a stride below width x pixel size";
     return "";
 }
 
@@ -122,8 +123,7 @@ const vobench_frame& DatasetInstance::read(uint64_t index) {
     const vobench_frame* frame = nullptr;
     if (vobench_status s = api_->read_frame(handle_, index, &frame); s != VOBENCH_OK) fail("read_frame", s);
     if (frame == nullptr || frame->color == nullptr || frame->depth == nullptr)
-        throw PluginCallError("plugin '" + plugin_->name() + "': read_frame(" + std::to_string(index) +
-                                  ") returned an incomplete frame",
+        throw PluginCallError("plugin '" + plugin_->name() + "': read_frame(" + std::to_string(index) + ") returned an incomplete frame",
                               VOBENCH_ERROR);
     // An odometry plugin reads these images by their sizes and strides: a reader that lies about them
     // must fail here, named, not make the plugin read past a buffer and be blamed for the crash.

@@ -26,7 +26,6 @@ private:
     vobench_status status_;
 };
 
-
 // Checks names, types and ranges against the plugin's table; throws std::invalid_argument naming the
 // plugin and parameter.
 void validate_params(const PluginInfo& plugin, const ParamMap& params);

@@ -2,7 +2,6 @@
 
 #include "util/escape.hpp"
 
-
 #include <cctype>
 #include <cmath>
 #include <cstddef>
@@ -20,14 +19,18 @@ constexpr std::size_t kMinOdometryApiSize = offsetof(vobench_odometry_api, destr
 bool is_identifier(const char* s) {
     if (s == nullptr || *s == '\0') return false;
     for (; *s; ++s)
-        if (!(std::islower(static_cast<unsigned char>(*s)) || std::isdigit(static_cast<unsigned char>(*s)) || *s == '_'))
-            return false;
+        if (!(std::islower(static_cast<unsigned char>(*s)) || std::isdigit(static_cast<unsigned char>(*s)) || *s == '_')) return false;
     return true;
 }
 
 // One parameter-table row as SDK values; the texts cleaned (they came from plugin code).
 sdk::Param param_of(const vobench_param_desc& p) {
-    return {p.name, p.type, clean_text(p.default_value), p.min_value, p.max_value, p.choices ? clean_text(p.choices) : "",
+    return {p.name,
+            p.type,
+            clean_text(p.default_value),
+            p.min_value,
+            p.max_value,
+            p.choices ? clean_text(p.choices) : "",
             p.help ? clean_text(p.help) : ""};
 }
 
@@ -62,7 +65,9 @@ std::string check_params(const vobench_plugin_descriptor* d) {
 
 namespace {
 // JSON has no infinity: an unbounded range travels as the string "inf" / "-inf".
-nlohmann::json bound_to_json(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(v > 0 ? "inf" : v < 0 ? "-inf" : "nan"); }
+nlohmann::json bound_to_json(double v) {
+    return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(v > 0 ? "inf" : v < 0 ? "-inf" : "nan");
+}
 double bound_from_json(const nlohmann::json& v) {
     if (v.is_number()) return v.get<double>();
     const std::string s = v.get<std::string>();
@@ -73,10 +78,16 @@ double bound_from_json(const nlohmann::json& v) {
 nlohmann::json plugin_info_to_json(const PluginInfo& i) {
     nlohmann::json params = nlohmann::json::array();
     for (const sdk::Param& p : i.params)
-        params.push_back({{"name", p.name}, {"type", p.type}, {"default", p.default_value}, {"min", bound_to_json(p.min_value)}, {"max", bound_to_json(p.max_value)},
-                          {"choices", p.choices}, {"help", p.help}});
-    return {{"path", i.path.string()}, {"name", i.name}, {"version", i.version}, {"description", i.description}, {"license", i.license},
-            {"url", i.url}, {"kind", i.kind}, {"abi_version", i.abi_version}, {"api_version", i.api_version}, {"params", params}};
+        params.push_back({{"name", p.name},
+                          {"type", p.type},
+                          {"default", p.default_value},
+                          {"min", bound_to_json(p.min_value)},
+                          {"max", bound_to_json(p.max_value)},
+                          {"choices", p.choices},
+                          {"help", p.help}});
+    return {{"path", i.path.string()},      {"name", i.name},  {"version", i.version}, {"description", i.description},
+            {"license", i.license},         {"url", i.url},    {"kind", i.kind},       {"abi_version", i.abi_version},
+            {"api_version", i.api_version}, {"params", params}};
 }
 
 PluginInfo plugin_info_from_json(const nlohmann::json& j) {
@@ -91,16 +102,16 @@ PluginInfo plugin_info_from_json(const nlohmann::json& j) {
     i.abi_version = j.at("abi_version");
     i.api_version = j.at("api_version");
     for (const auto& p : j.at("params"))
-        i.params.push_back({p.at("name"), p.at("type"), p.at("default"), bound_from_json(p.at("min")), bound_from_json(p.at("max")), p.at("choices"),
-                            p.at("help")});
+        i.params.push_back({p.at("name"), p.at("type"), p.at("default"), bound_from_json(p.at("min")), bound_from_json(p.at("max")),
+                            p.at("choices"), p.at("help")});
     return i;
 }
 
 const char* kind_name(vobench_plugin_kind kind) {
     switch (kind) {
-    case VOBENCH_KIND_DATASET: return "dataset";
-    case VOBENCH_KIND_ODOMETRY: return "odometry";
-    default: return "unknown";
+        case VOBENCH_KIND_DATASET: return "dataset";
+        case VOBENCH_KIND_ODOMETRY: return "odometry";
+        default: return "unknown";
     }
 }
 
@@ -110,8 +121,7 @@ std::string validate_descriptor(const vobench_plugin_descriptor* d) {
         return "descriptor struct_size " + std::to_string(d->struct_size) + " is smaller than the ABI 1 minimum " +
                std::to_string(kMinDescriptorSize);
     if (d->abi_version != VOBENCH_ABI_VERSION)
-        return "descriptor says ABI " + std::to_string(d->abi_version) + ", this host speaks ABI " +
-               std::to_string(VOBENCH_ABI_VERSION);
+        return "descriptor says ABI " + std::to_string(d->abi_version) + ", this host speaks ABI " + std::to_string(VOBENCH_ABI_VERSION);
     if (d->api_version < 1) return "descriptor says API version 0";
     if (!is_identifier(d->name)) return "descriptor name is missing or not an identifier [a-z0-9_]+";
     if (d->version == nullptr || *d->version == '\0') return "descriptor has no version";
@@ -123,8 +133,7 @@ std::string validate_descriptor(const vobench_plugin_descriptor* d) {
         if (t == nullptr) return "dataset plugin without a dataset table";
         if (d->odometry != nullptr) return "dataset plugin also fills the odometry table";
         if (t->struct_size < kMinDatasetApiSize)
-            return "dataset table struct_size " + std::to_string(t->struct_size) + " is smaller than " +
-                   std::to_string(kMinDatasetApiSize);
+            return "dataset table struct_size " + std::to_string(t->struct_size) + " is smaller than " + std::to_string(kMinDatasetApiSize);
         if (!t->create || !t->open || !t->describe || !t->read_frame || !t->last_error || !t->destroy)
             return "dataset table has a NULL function";
     } else if (d->kind == VOBENCH_KIND_ODOMETRY) {

@@ -6,8 +6,8 @@
 // The library stays loaded as long as any shared_ptr to it lives: instances hold one.
 #pragma once
 
-#include <vobench/plugin.hpp>
 #include <vobench/vobench_plugin.h>
+#include <vobench/plugin.hpp>
 
 #include <boost/dll/shared_library.hpp>
 #include <nlohmann/json.hpp>

@@ -4,10 +4,10 @@
 #include "util/hash.hpp"
 #include "util/subprocess.hpp"
 
+#include <unistd.h>
 #include <cstdlib>
 #include <map>
 #include <mutex>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -94,7 +94,7 @@ PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
         if (!(child.exited && child.exit_code == 0) || !well_formed(answer)) {
             // A crash or hang while loading is a property of the binary too: cached like a refusal.
             answer = {{"refused", "loading it " + (child.timed_out ? "did not finish within " + std::to_string(timeout_s) + " s (killed)"
-                                                                    : "in a child process ended it: " + child.describe())}};
+                                                                   : "in a child process ended it: " + child.describe())}};
         }
         if (!folder.empty() && !child.timed_out) {  // a hang may be the machine's load: probed again next time
             fs::create_directories(folder, ec);

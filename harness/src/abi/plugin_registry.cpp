@@ -6,10 +6,10 @@
 
 #include <algorithm>
 #include <atomic>
-#include <thread>
 #include <cstdlib>
 #include <set>
 #include <sstream>
+#include <thread>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -80,8 +80,10 @@ PluginScan PluginRegistry::scan() const {
     PluginScan scan;
     std::set<std::string> seen_names;
     for (std::size_t i = 0; i < files.size(); ++i) {
-        if (!refusals[i].empty()) scan.refusals.push_back(refusals[i]);
-        else if (infos[i] && seen_names.insert(infos[i]->name).second) scan.plugins.push_back(*infos[i]);
+        if (!refusals[i].empty())
+            scan.refusals.push_back(refusals[i]);
+        else if (infos[i] && seen_names.insert(infos[i]->name).second)
+            scan.plugins.push_back(*infos[i]);
     }
     return scan;
 }

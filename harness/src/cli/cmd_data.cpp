@@ -49,11 +49,11 @@ void add_data_command(CLI::App& app, int& exit_code) {
         if (json) {
             std::cout << json_text(j) << std::endl;
         } else {
-            std::cout << fmt::format("{} ({}): {} frames {}x{} (depth sensor {}x{}), fx {} fy {} cx {} cy {}, depth scale {}, "
-                                     "{} ground-truth poses, {:.3f} s\n",
-                                     j["name"].get<std::string>(), j["sensor"].get<std::string>(), s.frame_count,
-                                     s.camera->width, s.camera->height, s.depth_width, s.depth_height, s.camera->fx,
-                                     s.camera->fy, s.camera->cx, s.camera->cy, s.depth_scale, gt.size(), duration);
+            std::cout << fmt::format(
+                "{} ({}): {} frames {}x{} (depth sensor {}x{}), fx {} fy {} cx {} cy {}, depth scale {}, "
+                "{} ground-truth poses, {:.3f} s\n",
+                j["name"].get<std::string>(), j["sensor"].get<std::string>(), s.frame_count, s.camera->width, s.camera->height,
+                s.depth_width, s.depth_height, s.camera->fx, s.camera->fy, s.camera->cx, s.camera->cy, s.depth_scale, gt.size(), duration);
         }
         exit_code = 0;
     });

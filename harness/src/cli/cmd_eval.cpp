@@ -24,8 +24,8 @@ metrics::Trajectory load(const std::string& path, const std::string& format, con
 }
 
 void print_stats(const char* title, const metrics::ErrorStats& s, const char* unit) {
-    std::cout << fmt::format("{:<24} rmse {:.6f} {u}  mean {:.6f}  median {:.6f}  std {:.6f}  min {:.6f}  max {:.6f}  ({} pairs)\n",
-                             title, s.rmse, s.mean, s.median, s.std, s.min, s.max, s.count, fmt::arg("u", unit));
+    std::cout << fmt::format("{:<24} rmse {:.6f} {u}  mean {:.6f}  median {:.6f}  std {:.6f}  min {:.6f}  max {:.6f}  ({} pairs)\n", title,
+                             s.rmse, s.mean, s.median, s.std, s.min, s.max, s.count, fmt::arg("u", unit));
 }
 
 }  // namespace
@@ -77,8 +77,7 @@ void add_traj_command(CLI::App& app, int& exit_code) {
     stats->add_flag("--json", json, "Print JSON");
     stats->callback([&exit_code] {
         const metrics::Trajectory t = load(file, format, cim, false);
-        const metrics::TrajectoryStats s =
-            metrics::compute_trajectory_stats(t, rate > 0 ? std::optional<double>(rate) : std::nullopt);
+        const metrics::TrajectoryStats s = metrics::compute_trajectory_stats(t, rate > 0 ? std::optional<double>(rate) : std::nullopt);
         if (json) {
             nlohmann::json j = s;
             std::cout << json_text(j) << std::endl;

@@ -61,8 +61,10 @@ void add_gt_commands(CLI::App& app, int& exit_code) {
         o.max_dt = max_dt;
         o.align = align;
         const gt::CompareResult r = gt::compare_ground_truth(load(gt_file, gt_format), load(validation, val_format), o);
-        if (json) std::cout << json_text(gt::compare_json(r, o)) << "\n";
-        else std::cout << gt::compare_table(r);
+        if (json)
+            std::cout << json_text(gt::compare_json(r, o)) << "\n";
+        else
+            std::cout << gt::compare_table(r);
         exit_code = 0;
     });
 
@@ -99,9 +101,9 @@ void add_gt_commands(CLI::App& app, int& exit_code) {
         gt::write_fused(out, fused);
         double mean_sigma = 0;
         for (const auto& f : fused) mean_sigma += std::sqrt(f.covariance.block<3, 3>(0, 0).trace() / 3.0);
-        std::cout << fmt::format("{} poses fused from {} (σ {} m) and {} (σ {} m){}; mean position σ {:.4f} m → {} (+ .cov)\n", fused.size(),
-                                 a.poses.size(), a.sigma_pos_m, b.poses.size(), b.sigma_pos_m, odo_file.empty() ? "" : " with odometry",
-                                 mean_sigma / static_cast<double>(fused.size()), out);
+        std::cout << fmt::format("{} poses fused from {} (σ {} m) and {} (σ {} m){}; mean position σ {:.4f} m → {} (+ .cov)\n",
+                                 fused.size(), a.poses.size(), a.sigma_pos_m, b.poses.size(), b.sigma_pos_m,
+                                 odo_file.empty() ? "" : " with odometry", mean_sigma / static_cast<double>(fused.size()), out);
         exit_code = 0;
     });
 }

@@ -26,7 +26,10 @@ std::string camel(const std::string& name) {
     std::string out;
     bool up = true;
     for (char c : name) {
-        if (c == '_') { up = true; continue; }
+        if (c == '_') {
+            up = true;
+            continue;
+        }
         out += up ? static_cast<char>(std::toupper(static_cast<unsigned char>(c))) : c;
         up = false;
     }
@@ -41,7 +44,12 @@ void add_new_plugin_command(CLI::App& app, int& exit_code) {
     c->add_option("NAME", name, "Plugin name: lower-case letters, digits and _")->required();
     c->add_option("--dir", dir, "Project folder (default: ./NAME); must not exist or be empty");
     c->callback([&exit_code] {
-        if (name.empty() || !std::all_of(name.begin(), name.end(), [](char ch) { return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) || ch == '_'; }) ||
+        if (name.empty() ||
+            !std::all_of(name.begin(), name.end(),
+                         [](char ch) {
+                             return std::islower(static_cast<unsigned char>(ch)) || std::isdigit(static_cast<unsigned char>(ch)) ||
+                                    ch == '_';
+                         }) ||
             std::isdigit(static_cast<unsigned char>(name[0])))
             throw CLI::ValidationError("NAME", "'" + name + "' is not a plugin name ([a-z_][a-z0-9_]*)");
         const fs::path out = dir.empty() ? fs::path(name) : fs::path(dir);
@@ -53,18 +61,20 @@ void add_new_plugin_command(CLI::App& app, int& exit_code) {
         source = replace_all(source, "// template — the smallest complete", "// " + name + " — made from the smallest complete");
         std::string cmake = plugin_template::kCMakeLists;
         cmake = replace_all(cmake, "vobench_template_plugin", name);
-        cmake = replace_all(cmake, "vobench_add_plugin(template SOURCES template_vo.cpp)", "vobench_add_plugin(" + name + " SOURCES " + name + ".cpp)");
+        cmake = replace_all(cmake, "vobench_add_plugin(template SOURCES template_vo.cpp)",
+                            "vobench_add_plugin(" + name + " SOURCES " + name + ".cpp)");
         write_file_atomic(out / (name + ".cpp"), source);
         write_file_atomic(out / "CMakeLists.txt", cmake);
         write_file_atomic(out / "README.md",
-                                   fmt::format("# {0}\n\nA vobench odometry plugin. Build against an installed vobench SDK:\n\n"
-                                               "```sh\ncmake -S . -B build -DCMAKE_PREFIX_PATH=/path/to/vobench/prefix\ncmake --build build\n"
-                                               "vobench plugins check build/vobench_{0}.so\n"
-                                               "VOBENCH_PLUGIN_PATH=build vobench track --dataset tum --path SEQUENCE --algorithm {0}\n```\n",
-                                               name));
-        std::cout << fmt::format("wrote {0}/{1}.cpp, {0}/CMakeLists.txt and {0}/README.md\n"
-                                 "next: cmake -S {0} -B {0}/build -DCMAKE_PREFIX_PATH=<vobench prefix> && cmake --build {0}/build\n",
-                                 out.string(), name);
+                          fmt::format("# {0}\n\nA vobench odometry plugin. Build against an installed vobench SDK:\n\n"
+                                      "```sh\ncmake -S . -B build -DCMAKE_PREFIX_PATH=/path/to/vobench/prefix\ncmake --build build\n"
+                                      "vobench plugins check build/vobench_{0}.so\n"
+                                      "VOBENCH_PLUGIN_PATH=build vobench track --dataset tum --path SEQUENCE --algorithm {0}\n```\n",
+                                      name));
+        std::cout << fmt::format(
+            "wrote {0}/{1}.cpp, {0}/CMakeLists.txt and {0}/README.md\n"
+            "next: cmake -S {0} -B {0}/build -DCMAKE_PREFIX_PATH=<vobench prefix> && cmake --build {0}/build\n",
+            out.string(), name);
         exit_code = 0;
     });
 }

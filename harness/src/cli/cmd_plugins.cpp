@@ -2,13 +2,12 @@
 #include "abi/conformance.hpp"
 #include "abi/plugin_probe.hpp"
 #include "abi/plugin_registry.hpp"
+#include "cli/commands.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
-#include "cli/commands.hpp"
-#include "util/files.hpp"
 
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <iostream>
 
@@ -17,34 +16,29 @@ namespace {
 
 const char* type_name(vobench_param_type t) {
     switch (t) {
-    case VOBENCH_PARAM_BOOL: return "bool";
-    case VOBENCH_PARAM_INT: return "int";
-    case VOBENCH_PARAM_DOUBLE: return "double";
-    case VOBENCH_PARAM_STRING: return "string";
-    case VOBENCH_PARAM_ENUM: return "enum";
-    default: return "?";
+        case VOBENCH_PARAM_BOOL: return "bool";
+        case VOBENCH_PARAM_INT: return "int";
+        case VOBENCH_PARAM_DOUBLE: return "double";
+        case VOBENCH_PARAM_STRING: return "string";
+        case VOBENCH_PARAM_ENUM: return "enum";
+        default: return "?";
     }
 }
 
 nlohmann::json plugin_json(const PluginInfo& p, bool with_params) {
     std::error_code ec;
     const std::filesystem::path canonical = std::filesystem::weakly_canonical(p.path, ec);
-    nlohmann::json j{{"name", p.name},
-                     {"kind", kind_name(p.kind)},
-                     {"version", p.version},
-                     {"abi", p.abi_version},
-                     {"api", p.api_version},
-                     {"path", (ec ? p.path : canonical).string()}};
+    nlohmann::json j{{"name", p.name},       {"kind", kind_name(p.kind)}, {"version", p.version},
+                     {"abi", p.abi_version}, {"api", p.api_version},      {"path", (ec ? p.path : canonical).string()}};
     if (with_params) {
         j["description"] = p.description;
         j["license"] = p.license;
         j["url"] = p.url;
         j["params"] = nlohmann::json::array();
         for (const sdk::Param& param : p.params) {
-            nlohmann::json pj{{"name", param.name}, {"type", type_name(param.type)}, {"default", param.default_value},
-                              {"help", param.help}};
-            if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE)
-                pj["range"] = {param.min_value, param.max_value};
+            nlohmann::json pj{
+                {"name", param.name}, {"type", type_name(param.type)}, {"default", param.default_value}, {"help", param.help}};
+            if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE) pj["range"] = {param.min_value, param.max_value};
             if (param.type == VOBENCH_PARAM_ENUM) pj["choices"] = param.choices;
             j["params"].push_back(pj);
         }
@@ -71,7 +65,8 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
             std::cout << json_text(j) << std::endl;
         } else {
             for (const auto& p : scan.plugins)
-                std::cout << fmt::format("{:<9} {:<16} {:<8} {}\n", kind_name(p.kind), p.name, clean_text(p.version), clean_text(p.description));
+                std::cout << fmt::format("{:<9} {:<16} {:<8} {}\n", kind_name(p.kind), p.name, clean_text(p.version),
+                                         clean_text(p.description));
             if (scan.plugins.empty()) std::cout << "no plugins found (set VOBENCH_PLUGIN_PATH)\n";
         }
         exit_code = 0;

@@ -9,7 +9,6 @@
 #include "util/escape.hpp"
 #include "util/files.hpp"
 #include "util/folder_lock.hpp"
-#include "util/files.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -24,7 +23,8 @@ namespace {
 void print_report(const ReportResult& r, const fs::path& out) {
     std::cout << "\n## Kinect v1 vs v2 — accuracy in the layout of Table 5 (Kraft et al. 2016)\n\n"
               << r.accuracy_markdown << fmt::format("{} cells, {} failed.\n", r.runs, r.failed)
-              << "Report: " << (out / "report.html").string() << "\nTables: " << (out / "summary.md").string() << ", summary.csv, summary.tex; "
+              << "Report: " << (out / "report.html").string() << "\nTables: " << (out / "summary.md").string()
+              << ", summary.csv, summary.tex; "
               << "leaderboard: " << (out / "leaderboard.json").string() << "\n";
     for (const std::string& f : r.failed_required) std::cout << "REQUIRED CRITERION NOT MET: " << f << "\n";
     if (!r.problems.empty()) {
@@ -55,14 +55,21 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     run->add_flag("--fresh", fresh, "Set earlier results in the output folder aside and start again");
     run->add_option("--only", only, "Run only cells whose dataset/sequence/sensor/algorithm/id matches this wildcard");
     run->add_flag("--dry-run", dry_run, "Validate and list the cells; run and render nothing");
-    run->add_option("--backend", backend, "local or slurm (default: the config's backend:, else local)")->check(CLI::IsMember({"local", "slurm"}));
+    run->add_option("--backend", backend, "local or slurm (default: the config's backend:, else local)")
+        ->check(CLI::IsMember({"local", "slurm"}));
     run->add_option("--partition", slurm.partition, "slurm: sbatch --partition")->group("Slurm");
     run->add_option("--account", slurm.account, "slurm: sbatch --account")->group("Slurm");
     run->add_option("--time", slurm.time, "slurm: sbatch --time per array task, e.g. 2:00:00")->group("Slurm");
     run->add_option("--mem", slurm.mem, "slurm: sbatch --mem per array task, e.g. 8G")->group("Slurm");
     run->add_option("--array-limit", slurm.array_limit, "slurm: at most K array tasks at once")->group("Slurm");
-    run->add_option("--chunk", slurm.chunk, "slurm: cells per array task")->check(CLI::Range(1, 100000))->capture_default_str()->group("Slurm");
-    run->add_option("--poll", slurm.poll_s, "slurm: seconds between squeue calls")->check(CLI::Range(1, 3600))->capture_default_str()->group("Slurm");
+    run->add_option("--chunk", slurm.chunk, "slurm: cells per array task")
+        ->check(CLI::Range(1, 100000))
+        ->capture_default_str()
+        ->group("Slurm");
+    run->add_option("--poll", slurm.poll_s, "slurm: seconds between squeue calls")
+        ->check(CLI::Range(1, 3600))
+        ->capture_default_str()
+        ->group("Slurm");
     run->add_flag("--detach", detach, "slurm: return after submitting; `vobench collect DIR` finishes")->group("Slurm");
     run->callback([&exit_code] {
         const PluginRegistry registry;
@@ -109,12 +116,14 @@ void add_run_commands(CLI::App& app, int& exit_code) {
             t = run_local(cells, o);
         }
         if (t.interrupted) {
-            spdlog::warn("interrupted: {} cells finished and kept, the running ones discarded; continue with: vobench run {} --out {} --resume",
-                         t.ran, config_file, o.out.string());
+            spdlog::warn(
+                "interrupted: {} cells finished and kept, the running ones discarded; continue with: vobench run {} --out {} --resume",
+                t.ran, config_file, o.out.string());
             exit_code = 130;
             return;
         }
-        spdlog::info("sweep finished: {} cells run ({} failed), {} skipped, {} frames in {:.1f} s", t.ran, t.failed, t.skipped, t.frames, t.wall_s);
+        spdlog::info("sweep finished: {} cells run ({} failed), {} skipped, {} frames in {:.1f} s", t.ran, t.failed, t.skipped, t.frames,
+                     t.wall_s);
         const ReportResult r = write_report(o.out);
         print_report(r, o.out);
         exit_code = report_status(r, only.empty());

@@ -4,9 +4,9 @@
 
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
 #include <cstdio>
 #include <iostream>
-#include <unistd.h>
 
 namespace vobench::cli {
 
@@ -32,12 +32,15 @@ void add_synth_command(CLI::App& app, int& exit_code) {
         o.out = out;
         const bool tty = isatty(fileno(stderr));
         const auto report = synth::synthesize(o, [tty](uint64_t done, uint64_t total) {
-            if (tty) std::fprintf(stderr, "\rrendering %llu/%llu", static_cast<unsigned long long>(done), static_cast<unsigned long long>(total));
-            else if (done == total || done % 100 == 0) spdlog::info("rendered {}/{}", done, total);
+            if (tty)
+                std::fprintf(stderr, "\rrendering %llu/%llu", static_cast<unsigned long long>(done),
+                             static_cast<unsigned long long>(total));
+            else if (done == total || done % 100 == 0)
+                spdlog::info("rendered {}/{}", done, total);
         });
         if (tty) std::fprintf(stderr, "\n");
-        std::cout << fmt::format("{}: {} frames of {} along {} in {:.2f} s ({:.2f} frames/s)\n", out, report.frames, o.sensor,
-                                 o.trajectory, report.seconds, report.fps());
+        std::cout << fmt::format("{}: {} frames of {} along {} in {:.2f} s ({:.2f} frames/s)\n", out, report.frames, o.sensor, o.trajectory,
+                                 report.seconds, report.fps());
         exit_code = 0;
     });
 }

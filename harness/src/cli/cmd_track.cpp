@@ -1,13 +1,13 @@
 // vobench track — one odometry plugin on one sequence.
 #include "cli/commands.hpp"
-#include "metrics/metric_catalog.hpp"
 #include "cli/protocol_options.hpp"
+#include "metrics/metric_catalog.hpp"
 #include "run/track.hpp"
 #include "util/files.hpp"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <iostream>
 
@@ -46,7 +46,10 @@ void add_track_command(CLI::App& app, int& exit_code) {
         }
         const double ms = r.mean_ms();
         // The metrics under the catalogue's names, as in run.json and the leaderboard.
-        nlohmann::json metric_values{{"lost_frames", r.failed_frames}, {"failed_frames", r.failed_frames}, {"ms_per_frame", ms}, {"fps", ms > 0 ? 1000.0 / ms : 0.0}};
+        nlohmann::json metric_values{{"lost_frames", r.failed_frames},
+                                     {"failed_frames", r.failed_frames},
+                                     {"ms_per_frame", ms},
+                                     {"fps", ms > 0 ? 1000.0 / ms : 0.0}};
         nlohmann::json j{{"frames", r.frames.size()}, {"metrics", nullptr}};
         if (r.evaluation) {
             for (const auto& [name, value] : metrics::flatten(*r.evaluation)) metric_values[name] = value;
@@ -59,13 +62,13 @@ void add_track_command(CLI::App& app, int& exit_code) {
         if (json) {
             std::cout << json_text(j) << std::endl;
         } else {
-            std::cout << fmt::format("{} ({}): {} frames, {} not tracked, {:.3f} ms/frame ({:.1f} fps) in the plugin\n",
-                                     r.sequence, r.sensor, r.frames.size(), r.failed_frames, ms, ms > 0 ? 1000.0 / ms : 0.0);
+            std::cout << fmt::format("{} ({}): {} frames, {} not tracked, {:.3f} ms/frame ({:.1f} fps) in the plugin\n", r.sequence,
+                                     r.sensor, r.frames.size(), r.failed_frames, ms, ms > 0 ? 1000.0 / ms : 0.0);
             if (r.evaluation && r.evaluation->ate) std::cout << fmt::format("ATE rmse {:.6f} m\n", r.evaluation->ate->stats.rmse);
             if (r.evaluation && r.evaluation->rpe)
                 std::cout << fmt::format("RPE (delta {} {}) rmse {:.6f} m, {:.6f} deg\n", r.evaluation->protocol.rpe_delta,
-                                         metrics::delta_unit_name(r.evaluation->protocol.rpe_unit),
-                                         r.evaluation->rpe->trans.rmse, r.evaluation->rpe->rot_deg.rmse);
+                                         metrics::delta_unit_name(r.evaluation->protocol.rpe_unit), r.evaluation->rpe->trans.rmse,
+                                         r.evaluation->rpe->rot_deg.rmse);
         }
         if (!r.error.empty()) spdlog::error("{}", r.error);
         exit_code = r.error.empty() ? 0 : 1;

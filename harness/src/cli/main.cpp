@@ -6,9 +6,9 @@
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
-#include <ext/stdio_filebuf.h>
 #include <fcntl.h>
 #include <unistd.h>
+#include <ext/stdio_filebuf.h>
 
 #include <iostream>
 
@@ -22,8 +22,7 @@ std::map<std::string, std::string> parse_key_values(const std::vector<std::strin
     std::map<std::string, std::string> out;
     for (const std::string& item : items) {
         const auto eq = item.find('=');
-        if (eq == std::string::npos || eq == 0)
-            throw CLI::ValidationError(option, "'" + item + "' is not of the form key=value");
+        if (eq == std::string::npos || eq == 0) throw CLI::ValidationError(option, "'" + item + "' is not of the form key=value");
         out[item.substr(0, eq)] = item.substr(eq + 1);
     }
     return out;
@@ -54,9 +53,8 @@ int main(int argc, char** argv) {
 
     CLI::App app{"vobench — a benchmark harness for RGB-D visual odometry"};
     app.require_subcommand(0, 1);
-    app.set_version_flag("--version",
-                         std::string("vobench ") + VOBENCH_VERSION + " (plugin ABI " + std::to_string(VOBENCH_ABI_VERSION) +
-                             ", API " + std::to_string(VOBENCH_API_VERSION) + ")");
+    app.set_version_flag("--version", std::string("vobench ") + VOBENCH_VERSION + " (plugin ABI " + std::to_string(VOBENCH_ABI_VERSION) +
+                                          ", API " + std::to_string(VOBENCH_API_VERSION) + ")");
     bool verbose = false, quiet = false;
     app.add_flag("-v,--verbose", verbose, "More log output");
     app.add_flag("-q,--quiet", quiet, "Only warnings and errors");

@@ -39,8 +39,10 @@ CompareResult compare_ground_truth(const metrics::Trajectory& gt_in, const metri
     std::vector<std::pair<std::size_t, std::size_t>> pairs;  // (gt, validation)
     for (std::size_t k = 0; k < validation.size(); ++k) {
         const std::size_t g = match(gt, validation[k].t, o);
-        if (g == std::string::npos) r.unmatched_stamps.push_back(validation[k].t);
-        else pairs.emplace_back(g, k);
+        if (g == std::string::npos)
+            r.unmatched_stamps.push_back(validation[k].t);
+        else
+            pairs.emplace_back(g, k);
     }
     r.localised = pairs.size();
     if (pairs.empty()) throw std::invalid_argument("no validation pose could be matched to a ground-truth pose");

@@ -3,9 +3,9 @@
 #include "metrics/trajectory_io.hpp"
 #include "util/files.hpp"
 
+#include <fmt/format.h>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
-#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
@@ -122,8 +122,9 @@ std::vector<FusedPose> fuse_ground_truth(const PoseStream& a, const PoseStream& 
     x.p = at[0][0]->pose->p;
     x.R = at[0][0]->pose->q.toRotationMatrix();
     Mat12 P = Mat12::Zero();
-    P.diagonal() << Eigen::Vector3d::Constant(at[0][0]->sigma_pos * at[0][0]->sigma_pos), Eigen::Vector3d::Constant(at[0][0]->sigma_rot * at[0][0]->sigma_rot),
-        Eigen::Vector3d::Constant(1.0), Eigen::Vector3d::Constant(1.0);
+    P.diagonal() << Eigen::Vector3d::Constant(at[0][0]->sigma_pos * at[0][0]->sigma_pos),
+        Eigen::Vector3d::Constant(at[0][0]->sigma_rot * at[0][0]->sigma_rot), Eigen::Vector3d::Constant(1.0),
+        Eigen::Vector3d::Constant(1.0);
     for (std::size_t k = 0; k < n; ++k) {
         if (k > 0) {
             const double dt = stamps[k] - stamps[k - 1];
@@ -146,7 +147,8 @@ std::vector<FusedPose> fuse_ground_truth(const PoseStream& a, const PoseStream& 
             Eigen::VectorXd r(6);
             r << m->pose->p - x.p, log_so3(x.R.transpose() * m->pose->q.toRotationMatrix());
             Eigen::MatrixXd noise = Eigen::MatrixXd::Zero(6, 6);
-            noise.diagonal() << Eigen::Vector3d::Constant(m->sigma_pos * m->sigma_pos), Eigen::Vector3d::Constant(m->sigma_rot * m->sigma_rot);
+            noise.diagonal() << Eigen::Vector3d::Constant(m->sigma_pos * m->sigma_pos),
+                Eigen::Vector3d::Constant(m->sigma_rot * m->sigma_rot);
             update(x, P, H, r, noise);
         }
         if (o.odometry && k > 0) {

@@ -34,10 +34,10 @@ struct PoseStream {
 };
 
 struct FusionOptions {
-    double accel_noise = 0.5;   // m/s²/√Hz: how fast the body velocity may change
-    double gyro_noise = 0.5;    // rad/s²/√Hz
+    double accel_noise = 0.5;            // m/s²/√Hz: how fast the body velocity may change
+    double gyro_noise = 0.5;             // rad/s²/√Hz
     std::optional<PoseStream> odometry;  // sigma_pos_m in m/s, sigma_rot_deg in °/s (velocity noise)
-    double merge_dt = 1e-6;     // stamps closer than this are one step
+    double merge_dt = 1e-6;              // stamps closer than this are one step
 };
 
 struct FusedPose {

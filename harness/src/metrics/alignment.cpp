@@ -18,10 +18,10 @@ AlignmentMethod parse_alignment(const std::string& name) {
 
 const char* alignment_name(AlignmentMethod method) {
     switch (method) {
-    case AlignmentMethod::Se3: return "se3";
-    case AlignmentMethod::Sim3: return "sim3";
-    case AlignmentMethod::PosYaw: return "posyaw";
-    case AlignmentMethod::None: return "none";
+        case AlignmentMethod::Se3: return "se3";
+        case AlignmentMethod::Sim3: return "sim3";
+        case AlignmentMethod::PosYaw: return "posyaw";
+        case AlignmentMethod::None: return "none";
     }
     return "?";
 }
@@ -76,13 +76,13 @@ Alignment align(const Eigen::Matrix3Xd& model, const Eigen::Matrix3Xd& data, Ali
     const Eigen::Matrix3Xd m = model.leftCols(n), d = data.leftCols(n);
     const Eigen::Index needed = method == AlignmentMethod::None ? 0 : method == AlignmentMethod::PosYaw ? 2 : 3;
     if (n < needed)
-        throw std::invalid_argument(std::string(alignment_name(method)) + " alignment needs at least " +
-                                    std::to_string(needed) + " matched poses, got " + std::to_string(n));
+        throw std::invalid_argument(std::string(alignment_name(method)) + " alignment needs at least " + std::to_string(needed) +
+                                    " matched poses, got " + std::to_string(n));
     switch (method) {
-    case AlignmentMethod::Se3: return umeyama(m, d, false);
-    case AlignmentMethod::Sim3: return umeyama(m, d, true);
-    case AlignmentMethod::PosYaw: return pos_yaw(m, d);
-    case AlignmentMethod::None: return Alignment{};
+        case AlignmentMethod::Se3: return umeyama(m, d, false);
+        case AlignmentMethod::Sim3: return umeyama(m, d, true);
+        case AlignmentMethod::PosYaw: return pos_yaw(m, d);
+        case AlignmentMethod::None: return Alignment{};
     }
     return Alignment{};
 }

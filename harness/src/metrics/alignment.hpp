@@ -29,7 +29,6 @@ struct Alignment {
 
 // `model` (estimate) and `data` (ground truth): matched positions, one per column.
 // Throws std::invalid_argument when there are too few pairs for the method.
-Alignment align(const Eigen::Matrix3Xd& model, const Eigen::Matrix3Xd& data, AlignmentMethod method,
-                std::size_t first_n = 0);
+Alignment align(const Eigen::Matrix3Xd& model, const Eigen::Matrix3Xd& data, AlignmentMethod method, std::size_t first_n = 0);
 
 }  // namespace vobench::metrics

@@ -9,8 +9,7 @@
 
 namespace vobench::metrics {
 
-Association associate(const std::vector<double>& first, const std::vector<double>& second,
-                      const AssociationOptions& options) {
+Association associate(const std::vector<double>& first, const std::vector<double>& second, const AssociationOptions& options) {
     struct Candidate {
         double diff;
         std::size_t a, b;
@@ -25,14 +24,12 @@ Association associate(const std::vector<double>& first, const std::vector<double
         auto it = std::lower_bound(first.begin(), first.end(), target - margin);
         for (; it != first.end() && *it <= target + margin; ++it) {
             const double diff = std::abs(*it - (second[b] + options.offset));
-            if (diff < options.max_difference)
-                candidates.push_back({diff, static_cast<std::size_t>(it - first.begin()), b});
+            if (diff < options.max_difference) candidates.push_back({diff, static_cast<std::size_t>(it - first.begin()), b});
         }
     }
     // Sorted lists: index order is stamp order, so (diff, a, b) sorts as Python's tuples do.
-    std::sort(candidates.begin(), candidates.end(), [](const Candidate& x, const Candidate& y) {
-        return std::tie(x.diff, x.a, x.b) < std::tie(y.diff, y.a, y.b);
-    });
+    std::sort(candidates.begin(), candidates.end(),
+              [](const Candidate& x, const Candidate& y) { return std::tie(x.diff, x.a, x.b) < std::tie(y.diff, y.a, y.b); });
     std::vector<char> used_a(first.size(), 0), used_b(second.size(), 0);
     Association result;
     for (const Candidate& c : candidates) {
@@ -49,10 +46,10 @@ Association associate(const std::vector<double>& first, const std::vector<double
         auto range = [](const std::vector<double>& v) {
             return v.empty() ? std::string("empty") : fmt::format("{:.6f} … {:.6f}", v.front(), v.back());
         };
-        throw std::runtime_error(fmt::format(
-            "no time stamps matched within {} s (offset {} s): ground truth spans {} ({} poses), estimate spans {} "
-            "({} poses)",
-            options.max_difference, options.offset, range(first), first.size(), range(second), second.size()));
+        throw std::runtime_error(
+            fmt::format("no time stamps matched within {} s (offset {} s): ground truth spans {} ({} poses), estimate spans {} "
+                        "({} poses)",
+                        options.max_difference, options.offset, range(first), first.size(), range(second), second.size()));
     }
     return result;
 }

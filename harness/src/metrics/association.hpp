@@ -27,12 +27,11 @@ struct Association {
     std::vector<Match> matches;  // sorted by first stamp
     std::size_t unmatched_first = 0;
     std::size_t unmatched_second = 0;
-    double max_dt = 0.0;         // the largest |a − (b + offset)| among the matches
+    double max_dt = 0.0;  // the largest |a − (b + offset)| among the matches
 };
 
 // Both lists must be sorted ascending. Throws std::runtime_error when nothing matches, naming the two
 // stamp ranges (the usual cause: wrong files, or stamps in other units or clocks).
-Association associate(const std::vector<double>& first, const std::vector<double>& second,
-                      const AssociationOptions& options);
+Association associate(const std::vector<double>& first, const std::vector<double>& second, const AssociationOptions& options);
 
 }  // namespace vobench::metrics

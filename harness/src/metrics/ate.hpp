@@ -23,8 +23,8 @@ struct AteResult {
     ErrorStats stats;
     Association association;
     Alignment alignment;
-    std::vector<double> stamps;  // estimate stamps of the pairs
-    std::vector<double> errors;  // metres, per pair (for plots)
+    std::vector<double> stamps;                                   // estimate stamps of the pairs
+    std::vector<double> errors;                                   // metres, per pair (for plots)
     std::vector<Eigen::Vector3d> aligned_estimate, ground_truth;  // per pair (for plots)
 };
 

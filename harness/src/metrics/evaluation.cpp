@@ -14,26 +14,26 @@ const char* protocol_name(ProtocolName protocol) { return protocol == ProtocolNa
 
 Evaluation evaluate(const Trajectory& gt, const Trajectory& est, const Protocol& protocol) {
     if (protocol.name == ProtocolName::TumScripts && (protocol.alignment != AlignmentMethod::Se3 || protocol.align_first != 0))
-        throw std::invalid_argument("the tum-scripts protocol aligns with Horn's method on all pairs (se3); "
-                                    "use --protocol paper for other alignments");
+        throw std::invalid_argument(
+            "the tum-scripts protocol aligns with Horn's method on all pairs (se3); "
+            "use --protocol paper for other alignments");
     Evaluation e;
     e.protocol = protocol;
     // One association serves ATE and the paper's RPE.
     const bool needs_association = protocol.ate || (protocol.rpe && protocol.name == ProtocolName::Paper);
-    const Association association =
-        needs_association ? associate(stamps_of(gt), stamps_of(est), protocol.association) : Association{};
+    const Association association = needs_association ? associate(stamps_of(gt), stamps_of(est), protocol.association) : Association{};
     if (protocol.ate) e.ate = compute_ate(gt, est, association, {protocol.association, protocol.alignment, protocol.align_first});
     if (protocol.rpe) {
         const RpeOptions options{protocol.rpe_delta, protocol.rpe_unit, protocol.association};
         e.rpe = protocol.name == ProtocolName::Paper ? compute_rpe_paper(gt, est, association, options)
-                                                      : compute_rpe_tum_scripts(gt, est, options);
+                                                     : compute_rpe_tum_scripts(gt, est, options);
     }
     return e;
 }
 
 nlohmann::json protocol_json(const Protocol& p) {
-    nlohmann::json j{{"name", protocol_name(p.name)}, {"max_difference_s", p.association.max_difference},
-                     {"offset_s", p.association.offset}};
+    nlohmann::json j{
+        {"name", protocol_name(p.name)}, {"max_difference_s", p.association.max_difference}, {"offset_s", p.association.offset}};
     if (p.ate) j["ate"] = {{"alignment", alignment_name(p.alignment)}, {"align_first", p.align_first}};
     if (p.rpe) {
         j["rpe"] = {{"delta", p.rpe_delta}, {"delta_unit", delta_unit_name(p.rpe_unit)}};

@@ -13,12 +13,12 @@
 namespace vobench::metrics {
 
 enum class Better { lower, higher };
-enum class Combine { mean, sum };             // over an entry's cells: mean of successes, or a count summed over all
+enum class Combine { mean, sum };  // over an entry's cells: mean of successes, or a count summed over all
 enum class GtAccuracy { none, position, rotation };
 
 struct MetricInfo {
-    std::string name;   // "ate.rmse"
-    std::string unit;   // "m", "deg", "ms", "1/s", "frames", "cells"
+    std::string name;  // "ate.rmse"
+    std::string unit;  // "m", "deg", "ms", "1/s", "frames", "cells"
     Better better;
     Combine combine;
     GtAccuracy accuracy;

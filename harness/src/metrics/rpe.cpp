@@ -21,18 +21,16 @@ DeltaUnit parse_delta_unit(const std::string& name) {
 
 const char* delta_unit_name(DeltaUnit unit) {
     switch (unit) {
-    case DeltaUnit::Frames: return "f";
-    case DeltaUnit::Seconds: return "s";
-    case DeltaUnit::Metres: return "m";
-    case DeltaUnit::Radians: return "rad";
-    case DeltaUnit::Degrees: return "deg";
+        case DeltaUnit::Frames: return "f";
+        case DeltaUnit::Seconds: return "s";
+        case DeltaUnit::Metres: return "m";
+        case DeltaUnit::Radians: return "rad";
+        case DeltaUnit::Degrees: return "deg";
     }
     return "?";
 }
 
-double rotation_angle(const Eigen::Quaterniond& q) {
-    return 2.0 * std::atan2(q.vec().norm(), std::abs(q.w()));
-}
+double rotation_angle(const Eigen::Quaterniond& q) { return 2.0 * std::atan2(q.vec().norm(), std::abs(q.w())); }
 
 namespace {
 
@@ -71,17 +69,15 @@ RpeResult compute_rpe_paper(const Trajectory& gt, const Trajectory& est, const A
     // The index along which Δ is measured (frames use i + Δ directly).
     for (std::size_t k = 0; k < n; ++k) {
         switch (options.unit) {
-        case DeltaUnit::Frames: index[k] = static_cast<double>(k); break;
-        case DeltaUnit::Seconds: index[k] = est[assoc.matches[k].second].t; break;
-        case DeltaUnit::Metres:
-            index[k] = k == 0 ? 0.0 : index[k - 1] + (Q[k].translation() - Q[k - 1].translation()).norm();
-            break;
-        case DeltaUnit::Radians:
-        case DeltaUnit::Degrees: {
-            const double step = k == 0 ? 0.0 : rotation_angle(Eigen::Quaterniond(Q[k - 1].linear().transpose() * Q[k].linear()));
-            index[k] = k == 0 ? 0.0 : index[k - 1] + (options.unit == DeltaUnit::Degrees ? step * kRadToDeg : step);
-            break;
-        }
+            case DeltaUnit::Frames: index[k] = static_cast<double>(k); break;
+            case DeltaUnit::Seconds: index[k] = est[assoc.matches[k].second].t; break;
+            case DeltaUnit::Metres: index[k] = k == 0 ? 0.0 : index[k - 1] + (Q[k].translation() - Q[k - 1].translation()).norm(); break;
+            case DeltaUnit::Radians:
+            case DeltaUnit::Degrees: {
+                const double step = k == 0 ? 0.0 : rotation_angle(Eigen::Quaterniond(Q[k - 1].linear().transpose() * Q[k].linear()));
+                index[k] = k == 0 ? 0.0 : index[k - 1] + (options.unit == DeltaUnit::Degrees ? step * kRadToDeg : step);
+                break;
+            }
         }
     }
     if (options.unit == DeltaUnit::Frames && options.delta != std::floor(options.delta))
@@ -117,9 +113,15 @@ Eigen::Matrix4d transform44(const StampedPose& p) {
     if (nq < 4.0 * std::numeric_limits<double>::epsilon()) return T;
     q *= std::sqrt(2.0 / nq);
     const Eigen::Matrix4d o = q * q.transpose();
-    T(0, 0) = 1.0 - o(1, 1) - o(2, 2); T(0, 1) = o(0, 1) - o(2, 3);       T(0, 2) = o(0, 2) + o(1, 3);
-    T(1, 0) = o(0, 1) + o(2, 3);       T(1, 1) = 1.0 - o(0, 0) - o(2, 2); T(1, 2) = o(1, 2) - o(0, 3);
-    T(2, 0) = o(0, 2) - o(1, 3);       T(2, 1) = o(1, 2) + o(0, 3);       T(2, 2) = 1.0 - o(0, 0) - o(1, 1);
+    T(0, 0) = 1.0 - o(1, 1) - o(2, 2);
+    T(0, 1) = o(0, 1) - o(2, 3);
+    T(0, 2) = o(0, 2) + o(1, 3);
+    T(1, 0) = o(0, 1) + o(2, 3);
+    T(1, 1) = 1.0 - o(0, 0) - o(2, 2);
+    T(1, 2) = o(1, 2) - o(0, 3);
+    T(2, 0) = o(0, 2) - o(1, 3);
+    T(2, 1) = o(1, 2) + o(0, 3);
+    T(2, 2) = 1.0 - o(0, 0) - o(1, 1);
     return T;
 }
 
@@ -134,8 +136,10 @@ std::size_t find_closest_index(const std::vector<double>& L, double t) {
             best = middle;
         }
         if (t == L[middle]) return middle;
-        if (L[middle] > t) end = middle;
-        else beginning = middle + 1;
+        if (L[middle] > t)
+            end = middle;
+        else
+            beginning = middle + 1;
     }
     return best;
 }
@@ -179,17 +183,17 @@ RpeResult compute_rpe_tum_scripts(const Trajectory& gt, const Trajectory& est, c
     double sum = 0;
     for (std::size_t k = 0; k < est.size(); ++k) {
         switch (options.unit) {
-        case DeltaUnit::Frames: index_est[k] = static_cast<double>(k); break;
-        case DeltaUnit::Seconds: index_est[k] = stamps_est[k]; break;
-        case DeltaUnit::Metres:
-            if (k > 0) sum += ominus(T_est[k], T_est[k - 1]).block<3, 1>(0, 3).norm();
-            index_est[k] = sum;
-            break;
-        case DeltaUnit::Radians:
-        case DeltaUnit::Degrees:
-            if (k > 0) sum += compute_angle(ominus(T_est[k], T_est[k - 1])) * (options.unit == DeltaUnit::Degrees ? kRadToDeg : 1.0);
-            index_est[k] = sum;
-            break;
+            case DeltaUnit::Frames: index_est[k] = static_cast<double>(k); break;
+            case DeltaUnit::Seconds: index_est[k] = stamps_est[k]; break;
+            case DeltaUnit::Metres:
+                if (k > 0) sum += ominus(T_est[k], T_est[k - 1]).block<3, 1>(0, 3).norm();
+                index_est[k] = sum;
+                break;
+            case DeltaUnit::Radians:
+            case DeltaUnit::Degrees:
+                if (k > 0) sum += compute_angle(ominus(T_est[k], T_est[k - 1])) * (options.unit == DeltaUnit::Degrees ? kRadToDeg : 1.0);
+                index_est[k] = sum;
+                break;
         }
     }
 

@@ -4,12 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
-#include <unistd.h>
 
 namespace vobench::metrics {
 namespace fs = std::filesystem;
@@ -24,10 +24,10 @@ TrajectoryFormat parse_trajectory_format(const std::string& name) {
 
 const char* trajectory_format_name(TrajectoryFormat format) {
     switch (format) {
-    case TrajectoryFormat::Tum: return "tum";
-    case TrajectoryFormat::Kitti: return "kitti";
-    case TrajectoryFormat::Euroc: return "euroc";
-    case TrajectoryFormat::Putk2Raw: return "putk2-raw";
+        case TrajectoryFormat::Tum: return "tum";
+        case TrajectoryFormat::Kitti: return "kitti";
+        case TrajectoryFormat::Euroc: return "euroc";
+        case TrajectoryFormat::Putk2Raw: return "putk2-raw";
     }
     return "?";
 }
@@ -77,22 +77,24 @@ public:
     void warn(std::size_t line, const char* code, const std::string& message) {
         // One warning per code, with the count of further occurrences added at the end.
         for (auto& w : warned_)
-            if (w.code == code) { ++w.more; return; }
+            if (w.code == code) {
+                ++w.more;
+                return;
+            }
         warned_.push_back({code, fmt::format("{}:{}: [{}] {}", name_, line, code, message), 0});
     }
     std::vector<std::string> warnings() const {
         std::vector<std::string> out;
-        for (const auto& w : warned_)
-            out.push_back(w.more ? fmt::format("{} (and {} more lines)", w.text, w.more) : w.text);
+        for (const auto& w : warned_) out.push_back(w.more ? fmt::format("{} (and {} more lines)", w.text, w.more) : w.text);
         return out;
     }
 
     // Parses fields[0..count) as numbers; non-numbers are errors, non-finite values are errors (or, in
     // tum-scripts mode, make the caller skip the line: returns false).
     bool numbers(const Line& line, std::size_t count, std::vector<double>& out) {
-        if (line.fields.size() < count)
-            fail(line.number, fmt::format("expected {} values, found {}", count, line.fields.size()));
-        if (line.fields.size() > count) warn(line.number, "extra-columns", "values past the first " + std::to_string(count) + " are ignored");
+        if (line.fields.size() < count) fail(line.number, fmt::format("expected {} values, found {}", count, line.fields.size()));
+        if (line.fields.size() > count)
+            warn(line.number, "extra-columns", "values past the first " + std::to_string(count) + " are ignored");
         out.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
             const std::string& f = line.fields[i];
@@ -143,8 +145,7 @@ public:
                 if (sorted) warn(lines_[i], "unsorted-stamps", "stamps are not in increasing order; sorted");
                 sorted = false;
             }
-        if (!sorted)
-            std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return poses_[a].t < poses_[b].t; });
+        if (!sorted) std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return poses_[a].t < poses_[b].t; });
         ReadResult result;
         result.poses.reserve(poses_.size());
         for (std::size_t k = 0; k < order.size(); ++k) {
@@ -276,10 +277,10 @@ std::string read_text(const fs::path& path) {
 ReadResult parse_trajectory(const std::string& text, const std::string& name, const ReadOptions& options) {
     Reader reader(name, options);
     switch (options.format) {
-    case TrajectoryFormat::Tum: parse_tum(text, reader); break;
-    case TrajectoryFormat::Kitti: parse_kitti(text, reader); break;
-    case TrajectoryFormat::Euroc: parse_euroc(text, reader); break;
-    case TrajectoryFormat::Putk2Raw: parse_putk2_raw(text, reader); break;
+        case TrajectoryFormat::Tum: parse_tum(text, reader); break;
+        case TrajectoryFormat::Kitti: parse_kitti(text, reader); break;
+        case TrajectoryFormat::Euroc: parse_euroc(text, reader); break;
+        case TrajectoryFormat::Putk2Raw: parse_putk2_raw(text, reader); break;
     }
     return reader.finish();
 }

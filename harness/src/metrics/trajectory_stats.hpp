@@ -11,10 +11,10 @@ namespace vobench::metrics {
 
 struct TrajectoryStats {
     std::size_t poses = 0;
-    double duration_s = 0;          // last − first stamp, or (poses − 1) / rate when a rate is given
-    double length_m = 0;            // Σ ‖p_{k+1} − p_k‖
-    double mean_velocity_mps = 0;   // length / duration
-    double rotation_deg = 0;        // Σ angle(q_k⁻¹ q_{k+1})
+    double duration_s = 0;         // last − first stamp, or (poses − 1) / rate when a rate is given
+    double length_m = 0;           // Σ ‖p_{k+1} − p_k‖
+    double mean_velocity_mps = 0;  // length / duration
+    double rotation_deg = 0;       // Σ angle(q_k⁻¹ q_{k+1})
 };
 
 // With `rate_hz`, duration counts frames at that rate, the way Table 4 does (frames = poses − 1).

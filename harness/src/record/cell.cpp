@@ -9,9 +9,7 @@ int64_t Cell::frames_required() const {
     return max_frames > 0 ? std::min<int64_t>(frames_declared, static_cast<int64_t>(max_frames)) : frames_declared;
 }
 
-std::string Cell::entry_label() const {
-    return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]";
-}
+std::string Cell::entry_label() const { return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]"; }
 
 nlohmann::json cell_to_json(const Cell& c) {
     return {{"id", c.id},

@@ -17,14 +17,14 @@ namespace vobench {
 // Declared accuracy of a data set's ground truth (Ceriani et al. 2009): a metric below it is noise.
 // Negative: not declared here (the reader's own declaration, if any, is used); 0: exact.
 struct GroundTruthAccuracy {
-    double position_m = -1;  // 1σ, m
+    double position_m = -1;    // 1σ, m
     double rotation_deg = -1;  // 1σ, °
 };
 
 struct Limits {
-    int timeout_s = 1800;         // per cell, wall clock
-    uint64_t memory_mb = 4096;    // per cell, resident set
-    int threads = 1;              // OpenCV/TBB threads inside a cell: 1 keeps timings comparable and -j honest
+    int timeout_s = 1800;       // per cell, wall clock
+    uint64_t memory_mb = 4096;  // per cell, resident set
+    int threads = 1;            // OpenCV/TBB threads inside a cell: 1 keeps timings comparable and -j honest
 };
 
 struct Cell {

@@ -8,11 +8,11 @@
 namespace vobench {
 
 struct Criterion {
-    std::string metric;   // ate.rmse, rpe.trans.rmse, failed_frames, ...
-    std::string op;       // <=, <, >=, >, ==
+    std::string metric;  // ate.rmse, rpe.trans.rmse, failed_frames, ...
+    std::string op;      // <=, <, >=, >, ==
     double value = 0;
-    bool required = true; // a failed required criterion makes `vobench run` exit non-zero
-    std::string text;     // as written
+    bool required = true;  // a failed required criterion makes `vobench run` exit non-zero
+    std::string text;      // as written
 };
 
 // "metric op number" with a catalogue metric; throws std::invalid_argument naming what is wrong.

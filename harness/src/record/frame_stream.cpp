@@ -10,12 +10,8 @@
 namespace vobench {
 
 std::string encode_frame(const FrameRecord& f, const metrics::StampedPose& p) {
-    nlohmann::json j{{"i", f.index},
-                     {"t", f.stamp},
-                     {"ns", f.process_ns},
-                     {"r", f.read_ns},
-                     {"s", f.tracking},
-                     {"p", {p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w()}}};
+    nlohmann::json j{{"i", f.index},   {"t", f.stamp},    {"ns", f.process_ns},
+                     {"r", f.read_ns}, {"s", f.tracking}, {"p", {p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w()}}};
     for (const auto& [name, ns] : f.stages) j["st"][name] = ns;
     for (const auto& [name, v] : f.counters) j["c"][name] = v;
     return json_text(j, -1) + "\n";

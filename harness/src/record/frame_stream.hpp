@@ -36,10 +36,10 @@ std::string encode_frame(const FrameRecord& frame, const metrics::StampedPose& p
 
 struct FrameStream {
     std::vector<FrameRecord> frames;
-    metrics::Trajectory poses;   // one per frame
-    std::size_t lost_frames = 0; // tracking status not OK
-    std::string error;           // "" or "frames.jsonl line 7: …"
-    bool truncated_tail = false; // the last line had no newline (the child died while writing it)
+    metrics::Trajectory poses;    // one per frame
+    std::size_t lost_frames = 0;  // tracking status not OK
+    std::string error;            // "" or "frames.jsonl line 7: …"
+    bool truncated_tail = false;  // the last line had no newline (the child died while writing it)
 };
 
 FrameStream decode_frames(const std::filesystem::path& file);

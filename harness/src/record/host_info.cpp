@@ -3,11 +3,11 @@
 #include <fmt/chrono.h>
 #include <fmt/format.h>
 
+#include <sys/utsname.h>
+#include <unistd.h>
 #include <chrono>
 #include <fstream>
-#include <sys/utsname.h>
 #include <thread>
-#include <unistd.h>
 
 #ifndef VOBENCH_VERSION
 #define VOBENCH_VERSION "unknown"

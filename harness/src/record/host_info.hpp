@@ -11,7 +11,7 @@ namespace vobench {
 //  "vobench_version": ..., "git_revision": ...}
 nlohmann::json host_info();
 
-std::string vobench_version();   // "0.1.0+abc1234"
-std::string utc_now_iso();       // "2026-11-22T03:04:05.123Z"
+std::string vobench_version();  // "0.1.0+abc1234"
+std::string utc_now_iso();      // "2026-11-22T03:04:05.123Z"
 
 }  // namespace vobench

@@ -11,8 +11,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <set>
 #include <fstream>
+#include <set>
 #include <tuple>
 
 namespace vobench {
@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 
 std::optional<metrics::Evaluation> evaluate_run(const fs::path& dir, const metrics::Protocol& protocol, std::string& error) {
     try {
-        if (!fs::exists(dir / "groundtruth.txt")) throw std::runtime_error("no ground truth was saved (the run stopped before the sequence opened)");
+        if (!fs::exists(dir / "groundtruth.txt"))
+            throw std::runtime_error("no ground truth was saved (the run stopped before the sequence opened)");
         const metrics::Trajectory gt = metrics::read_trajectory(dir / "groundtruth.txt").poses;
         const metrics::Trajectory est = metrics::read_trajectory(dir / "trajectory.txt").poses;
         if (gt.empty()) throw std::runtime_error("the sequence has no ground truth");
@@ -98,7 +99,8 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
             r.metrics["lost_frames"] = lost;
             r.metrics["failed_frames"] = lost + (r.ok ? 0.0 : missing);
             if (!r.ok)  // a failed row ranks nothing; what it shows (a partial run's ATE) must still be a number
-                for (auto it = r.metrics.begin(); it != r.metrics.end();) it = std::isfinite(it->second) ? std::next(it) : r.metrics.erase(it);
+                for (auto it = r.metrics.begin(); it != r.metrics.end();)
+                    it = std::isfinite(it->second) ? std::next(it) : r.metrics.erase(it);
             if (r.ok)
                 if (const std::string why = stored_metrics_problem(r); !why.empty()) {
                     problem(id + ": not shown, " + why + " (" + run_dir.string() + ")");

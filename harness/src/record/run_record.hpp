@@ -22,11 +22,11 @@ using metrics::MetricMap;  // by catalogue name (metrics/metric_catalog.hpp)
 struct RunRecord {
     std::filesystem::path dir;
     Cell cell;
-    nlohmann::json run;           // run.json as written
+    nlohmann::json run;  // run.json as written
     bool ok = false;
-    std::string reason;           // failure reason
-    bool partial = false;         // stopped early: trajectory holds the frames before the failure
-    MetricMap metrics;            // accuracy (when evaluable) and timing
+    std::string reason;                             // failure reason
+    bool partial = false;                           // stopped early: trajectory holds the frames before the failure
+    MetricMap metrics;                              // accuracy (when evaluable) and timing
     std::optional<metrics::Evaluation> evaluation;  // per-pair errors, for the figures
     std::string evaluation_error;
     // Identity of the table entry this run belongs to (algorithm + parameters).

@@ -53,7 +53,8 @@ std::vector<std::string> sensors_of(const std::vector<RunGroup>& groups, const s
     return out;
 }
 
-const RunGroup* find_group(const std::vector<RunGroup>& groups, const std::string& entry, const std::string& row, const std::string& sensor) {
+const RunGroup* find_group(const std::vector<RunGroup>& groups, const std::string& entry, const std::string& row,
+                           const std::string& sensor) {
     for (const RunGroup& g : groups)
         if (g.entry == entry && g.row_label() == row && g.sensor == sensor) return &g;
     return nullptr;

@@ -28,7 +28,8 @@ std::vector<RunGroup> group_runs(const std::vector<RunRecord>& records);
 std::vector<std::string> entries_of(const std::vector<RunGroup>& groups);
 std::vector<std::string> rows_of(const std::vector<RunGroup>& groups, const std::string& entry);
 std::vector<std::string> sensors_of(const std::vector<RunGroup>& groups, const std::string& entry);
-const RunGroup* find_group(const std::vector<RunGroup>& groups, const std::string& entry, const std::string& row, const std::string& sensor);
+const RunGroup* find_group(const std::vector<RunGroup>& groups, const std::string& entry, const std::string& row,
+                           const std::string& sensor);
 
 // Over the successful runs of the group that have `metric`; nullopt when none has.
 std::optional<MetricSummary> summarize(const RunGroup& group, const std::string& metric);

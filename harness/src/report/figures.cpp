@@ -7,16 +7,16 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <atomic>
 #include <cerrno>
 #include <cstdlib>
-#include <sstream>
-#include <fcntl.h>
 #include <cstring>
-#include <spawn.h>
-#include <sys/wait.h>
+#include <sstream>
 #include <thread>
-#include <unistd.h>
 
 extern char** environ;
 
@@ -61,11 +61,12 @@ bool run_gnuplot(const fs::path& folder, const std::string& stem) {
     posix_spawn_file_actions_destroy(&actions);
     if (rc != 0) return false;
     int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-    }
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
     const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder / (stem + ".png"));
-    if (ok) fs::remove(folder / (stem + ".log"));
-    else spdlog::warn("gnuplot failed on {}: see {}", (folder / (stem + ".gp")).string(), (folder / (stem + ".log")).string());
+    if (ok)
+        fs::remove(folder / (stem + ".log"));
+    else
+        spdlog::warn("gnuplot failed on {}: see {}", (folder / (stem + ".gp")).string(), (folder / (stem + ".log")).string());
     return ok;
 }
 
@@ -107,7 +108,8 @@ void draw_all(std::vector<Figure>& figures, const fs::path& folder) {
 
 std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
     fs::create_directories(folder);
-    if (!have_gnuplot()) spdlog::warn("gnuplot is not installed: figure data and scripts are written, not the images (apt-get install gnuplot-nox)");
+    if (!have_gnuplot())
+        spdlog::warn("gnuplot is not installed: figure data and scripts are written, not the images (apt-get install gnuplot-nox)");
     std::vector<Figure> figures;
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
@@ -120,15 +122,17 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 if (!r || !r->evaluation->rpe || r->evaluation->rpe->pairs.empty()) continue;
                 const double t0 = r->evaluation->rpe->pairs.front().t_first;
                 data += fmt::format("# {} (cell {})\n# t_s rpe_trans_m rpe_rot_deg\n", clean_text(sensor_title(s)), clean_text(r->cell.id));
-                for (const auto& p : r->evaluation->rpe->pairs) data += fmt::format("{:.9f} {:.9g} {:.9g}\n", p.t_first - t0, p.trans_m, p.rot_deg);
+                for (const auto& p : r->evaluation->rpe->pairs)
+                    data += fmt::format("{:.9f} {:.9g} {:.9g}\n", p.t_first - t0, p.trans_m, p.rot_deg);
                 data += "\n\n";
                 plot += fmt::format("{}'{}.dat' index {} using 1:2 with lines lw 1.5 title {}", plot.empty() ? "plot " : ", ",
                                     file_stem({"rpe", entry, row}), block++, gnuplot_quoted(sensor_title(s)));
             }
             if (block == 0) continue;
             Figure f{"rpe", fmt::format("RPE over time — {} on {}", entry, row), file_stem({"rpe", entry, row}), false};
-            const std::string setup = fmt::format("set title {}\nset xlabel 'time [s]'\nset ylabel 'translational RPE [m]'\nset grid\nset key top left",
-                                                  gnuplot_quoted(f.title));
+            const std::string setup =
+                fmt::format("set title {}\nset xlabel 'time [s]'\nset ylabel 'translational RPE [m]'\nset grid\nset key top left",
+                            gnuplot_quoted(f.title));
             emit(figures, folder, f, data, script(f.stem, setup, plot, 800, 400));
         }
         // Fig. 13: the path from above, coloured by the ATE residual; the two axes of largest extent.
@@ -145,13 +149,18 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
             }
             const Eigen::Vector3d extent = hi - lo;
             int a = 0, b = 1;
-            if (extent.z() > extent.x() && extent.x() <= extent.y()) a = 2;
-            else if (extent.z() > extent.y() && extent.y() < extent.x()) b = 2;
+            if (extent.z() > extent.x() && extent.x() <= extent.y())
+                a = 2;
+            else if (extent.z() > extent.y() && extent.y() < extent.x())
+                b = 2;
             static const char* axis[] = {"x", "y", "z"};
             std::string data = fmt::format("# gt_{0} gt_{1} est_{0} est_{1} ate_m (cell {2})\n", axis[a], axis[b], clean_text(r->cell.id));
             for (std::size_t k = 0; k < gt.size(); ++k)
-                data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b], r->evaluation->ate->errors[k]);
-            Figure f{"traj", fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor), r->evaluation->ate->stats.rmse),
+                data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b],
+                                    r->evaluation->ate->errors[k]);
+            Figure f{"traj",
+                     fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor),
+                                 r->evaluation->ate->stats.rmse),
                      file_stem({"traj", entry, g.row_label(), g.sensor}), false};
             // Equal axis scales, unless the path is nearly a line (then the plot would be a sliver).
             const bool equal = std::min(extent[a], extent[b]) > 0.15 * std::max(extent[a], extent[b]);
@@ -159,9 +168,10 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 "set title {}\nset xlabel '{} [m]'\nset ylabel '{} [m]'\n{}set grid\nset cblabel 'ATE [m]'\n"
                 "set palette defined (0 '#2c7bb6', 0.5 '#ffffbf', 1 '#d7191c')\nset key bottom right",
                 gnuplot_quoted(f.title), axis[a], axis[b], equal ? "set size ratio -1\n" : "");
-            const std::string plot = fmt::format("plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
-                                                 "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
-                                                 f.stem);
+            const std::string plot = fmt::format(
+                "plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
+                "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
+                f.stem);
             emit(figures, folder, f, data, script(f.stem, setup, plot, 700, 600));
         }
         // Fig. 14: bars per sequence and sensor.
@@ -185,14 +195,17 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         Figure f{"bars", fmt::format("ATE and RPE per sequence and sensor — {}", entry), file_stem({"bars", entry}), false};
         std::string ate_plot, rpe_plot;
         for (std::size_t k = 0; k < sensors.size(); ++k) {
-            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k, gnuplot_quoted(sensor_title(sensors[k])));
-            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k, gnuplot_quoted(sensor_title(sensors[k])));
+            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k,
+                                    gnuplot_quoted(sensor_title(sensors[k])));
+            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k,
+                                    gnuplot_quoted(sensor_title(sensors[k])));
         }
         const std::string setup =
             "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\nset grid ytics\n"
             "set xtics rotate by -30\nset yrange [0:*]\nset datafile missing 'NaN'";
-        const std::string plot = fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
-                                             gnuplot_quoted(f.title), ate_plot, rpe_plot);
+        const std::string plot =
+            fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
+                        gnuplot_quoted(f.title), ate_plot, rpe_plot);
         emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
     }
     draw_all(figures, folder);

@@ -17,10 +17,10 @@
 namespace vobench {
 
 struct Figure {
-    std::string kind;       // "rpe", "traj", "bars"
+    std::string kind;  // "rpe", "traj", "bars"
     std::string title;
-    std::string stem;       // figures/<stem>.{png,svg,pdf,dat,gp}
-    bool drawn = false;     // gnuplot ran and wrote the PNG
+    std::string stem;    // figures/<stem>.{png,svg,pdf,dat,gp}
+    bool drawn = false;  // gnuplot ran and wrote the PNG
 };
 
 // Writes data and scripts under `folder` and runs gnuplot when it is installed (a warning otherwise).

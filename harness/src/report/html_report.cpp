@@ -79,7 +79,8 @@ document.body.dataset.ready='yes';
 
 std::string leaderboard_table(const nlohmann::json& lb) {
     const std::string primary = lb["context"]["primary_metric"];
-    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" + html_text(primary) +
+    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" +
+                    html_text(primary) +
                     " (mean)</th><th>95 % interval</th><th>ATE RMSE [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th><th>fps</th>"
                     "<th>cells</th><th>failed</th><th class=\"l\">tied with</th><th class=\"l\">criteria</th></tr></thead><tbody>\n";
     for (const auto& e : lb["entries"]) {
@@ -94,12 +95,12 @@ std::string leaderboard_table(const nlohmann::json& lb) {
             crit += fmt::format("<span class=\"{}\">{} {}</span><br>", c["passed"].get<bool>() ? "pass" : "fail",
                                 c["passed"].get<bool>() ? "✔" : "✘", html_text(c["criterion"].get<std::string>()));
         const std::string rank = e["rank"].is_null() ? "" : std::to_string(e["rank"].get<int>());
-        h += fmt::format("<tr class=\"{}\"><td data-v=\"{}\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-                         "<td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
-                         e["complete"].get<bool>() ? "entry" : "entry failed", rank, rank.empty() ? "–" : rank,
-                         html_text(e["entry"].get<std::string>()), num(agg, primary, 4), ci, num(agg, "ate.rmse", 4),
-                         num(agg, "rpe.trans.rmse", 4), num(agg, "rpe.rot.rmse", 3), num(agg, "fps", 1), e["cells"].size(),
-                         e["failed_cells"].get<int>(), ties, crit);
+        h += fmt::format(
+            "<tr class=\"{}\"><td data-v=\"{}\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+            "<td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
+            e["complete"].get<bool>() ? "entry" : "entry failed", rank, rank.empty() ? "–" : rank, html_text(e["entry"].get<std::string>()),
+            num(agg, primary, 4), ci, num(agg, "ate.rmse", 4), num(agg, "rpe.trans.rmse", 4), num(agg, "rpe.rot.rmse", 3),
+            num(agg, "fps", 1), e["cells"].size(), e["failed_cells"].get<int>(), ties, crit);
     }
     return h + "</tbody></table>\n";
 }
@@ -112,15 +113,18 @@ std::string accuracy_tables(const std::vector<RunGroup>& groups) {
         h += "<h3>" + html_text(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\" rowspan=\"2\">sequence</th>";
         for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_text(sensor_title(s)) + "</th>";
         h += "</tr><tr>";
-        for (std::size_t k = 0; k < sensors.size(); ++k) h += "<th>ATE RMSE [m]</th><th>ATE std [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>";
+        for (std::size_t k = 0; k < sensors.size(); ++k)
+            h += "<th>ATE RMSE [m]</th><th>ATE std [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>";
         h += "</tr></thead><tbody>\n";
         for (const std::string& row : rows_of(groups, entry)) {
             h += "<tr><td class=\"l\">" + html_text(row) + "</td>";
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
-                const double pos = g ? g->runs.front()->cell.gt_accuracy.position_m : 0, rot = g ? g->runs.front()->cell.gt_accuracy.rotation_deg : 0;
+                const double pos = g ? g->runs.front()->cell.gt_accuracy.position_m : 0,
+                             rot = g ? g->runs.front()->cell.gt_accuracy.rotation_deg : 0;
                 for (const auto& [metric, dec] : cols)
-                    h += "<td>" + html_text(format_metric(g, metric, dec, std::string(metric).rfind("rpe.rot", 0) == 0 ? rot : pos)) + "</td>";
+                    h += "<td>" + html_text(format_metric(g, metric, dec, std::string(metric).rfind("rpe.rot", 0) == 0 ? rot : pos)) +
+                         "</td>";
             }
             h += "</tr>\n";
         }
@@ -130,34 +134,42 @@ std::string accuracy_tables(const std::vector<RunGroup>& groups) {
 }
 
 std::string timing_table(const std::vector<RunGroup>& groups) {
-    std::string h = "<table class=\"sortable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th class=\"l\">sensor</th>"
-                    "<th>mean [ms]</th><th>median</th><th>p95</th><th>max</th><th>fps</th><th>reading [ms]</th><th>peak RSS [MB]</th><th>overhead [%]</th>"
-                    "<th class=\"l\">stages [ms/frame]</th></tr></thead><tbody>\n";
+    std::string h =
+        "<table class=\"sortable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th "
+        "class=\"l\">sensor</th>"
+        "<th>mean [ms]</th><th>median</th><th>p95</th><th>max</th><th>fps</th><th>reading [ms]</th><th>peak RSS [MB]</th><th>overhead "
+        "[%]</th>"
+        "<th class=\"l\">stages [ms/frame]</th></tr></thead><tbody>\n";
     const auto v = [](const std::optional<double>& x, int d) { return x ? fmt::format("{:.{}f}", *x, d) : std::string(); };
     for (const RunGroup& g : groups) {
         std::string stages;
         for (const std::string& s : stages_of(groups, g.entry))
             if (const auto ms = stage_mean_ms(g, s)) stages += fmt::format("{} {:.3f}; ", html_text(s), *ms);
-        h += fmt::format("<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-                         "<td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
-                         html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
-                         v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
-                         v(timing_mean(g, "read_ms_per_frame"), 3), v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1), stages);
+        h += fmt::format(
+            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td "
+            "class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+            "<td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
+            html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
+            v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
+            v(timing_mean(g, "read_ms_per_frame"), 3), v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1),
+            stages);
     }
     return h + "</tbody></table>\n";
 }
 
 std::string failures_table(const nlohmann::json& lb) {
     if (lb["failures"].empty()) return "<p>No cell failed.</p>\n";
-    std::string h = "<table id=\"failures\"><thead><tr><th class=\"l\">cell</th><th class=\"l\">entry</th><th class=\"l\">sequence</th>"
-                    "<th class=\"l\">sensor</th><th class=\"l\">reason</th><th>frames kept</th></tr></thead><tbody>\n";
+    std::string h =
+        "<table id=\"failures\"><thead><tr><th class=\"l\">cell</th><th class=\"l\">entry</th><th class=\"l\">sequence</th>"
+        "<th class=\"l\">sensor</th><th class=\"l\">reason</th><th>frames kept</th></tr></thead><tbody>\n";
     for (const auto& f : lb["failures"])
-        h += fmt::format("<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}/{}</td><td class=\"l\">{}</td>"
-                         "<td class=\"l\">{}</td><td>{}</td></tr>\n",
-                         html_text(f["id"].get<std::string>().substr(0, 12)), html_text(f["entry"].get<std::string>()),
-                         html_text(f["dataset"].get<std::string>()), html_text(f["sequence"].get<std::string>()),
-                         html_text(sensor_title(f["sensor"].get<std::string>())), html_text(f["reason"].get<std::string>()),
-                         f["failed_at_frame"].is_null() ? std::string("0") : std::to_string(f["failed_at_frame"].get<long long>()));
+        h += fmt::format(
+            "<tr class=\"failed\"><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}/{}</td><td class=\"l\">{}</td>"
+            "<td class=\"l\">{}</td><td>{}</td></tr>\n",
+            html_text(f["id"].get<std::string>().substr(0, 12)), html_text(f["entry"].get<std::string>()),
+            html_text(f["dataset"].get<std::string>()), html_text(f["sequence"].get<std::string>()),
+            html_text(sensor_title(f["sensor"].get<std::string>())), html_text(f["reason"].get<std::string>()),
+            f["failed_at_frame"].is_null() ? std::string("0") : std::to_string(f["failed_at_frame"].get<long long>()));
     return h + "</tbody></table>\n";
 }
 
@@ -168,13 +180,15 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + html_text(ctx.name) +
                     " — vobench report</title>\n<style>" + kStyle + "</style></head>\n<body>\n";
     h += "<h1>" + html_text(ctx.name) + " — vobench report</h1>\n";
-    h += "<p>Generated " + html_text(ctx.generated) + " by vobench " + html_text(lb["context"]["vobench_version"].get<std::string>()) + " on " +
-         html_text(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_text(ctx.protocol_text) + "</p>\n";
+    h += "<p>Generated " + html_text(ctx.generated) + " by vobench " + html_text(lb["context"]["vobench_version"].get<std::string>()) +
+         " on " + html_text(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_text(ctx.protocol_text) + "</p>\n";
     h += "<h2>Leaderboard</h2>\n<p>Ranked by " + html_text(ctx.rank_by) +
          " over each entry's cells; entries with a failed cell are not ranked. Ties: 95 % bootstrap intervals overlap. "
-         "Click a column to sort.</p>\n" + leaderboard_table(lb);
+         "Click a column to sort.</p>\n" +
+         leaderboard_table(lb);
     h += "<h2>Accuracy (layout of Table 5, Kraft et al. 2016)</h2>\n<p>Mean ± std over repeats. † some repeats failed; ‡ within the ground "
-         "truth's declared accuracy.</p>\n" + accuracy_tables(groups);
+         "truth's declared accuracy.</p>\n" +
+         accuracy_tables(groups);
     h += "<h2>Ground truth</h2>\n<p>Declared accuracy (1σ) of each data set's ground truth (Ceriani et al. 2009): a metric at or "
          "below it (‡) cannot be told from the ground truth's own error.</p>\n<table id=\"gt\"><thead><tr><th class=\"l\">dataset</th>"
          "<th>position [m]</th><th>rotation [°]</th></tr></thead><tbody>\n";
@@ -183,7 +197,8 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
              accuracy_text(a.rotation_deg, "") + "</td></tr>\n";
     h += "</tbody></table>\n";
     h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Reading: "
-         "ms per frame spent reading and decoding frames. Overhead: the rest of the frame loop's wall time.</p>\n" + timing_table(groups);
+         "ms per frame spent reading and decoding frames. Overhead: the rest of the frame loop's wall time.</p>\n" +
+         timing_table(groups);
     h += "<h2>Figures</h2>\n";
     // The page stays loadable for large sweeps: summary figures (bars, RPE over time) first, then the
     // per-cell trajectories, at most kMaxEmbedded in all; every figure is in figures/ regardless.
@@ -197,8 +212,9 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     if (order.size() > kMaxEmbedded) order.resize(kMaxEmbedded);
     for (const Figure* fp : order) {
         const Figure& f = *fp;
-        h += "<figure><img alt=\"" + html_text(f.title) + "\" src=\"data:image/png;base64," + base64(read_binary(figure_folder / (f.stem + ".png"))) +
-             "\"><figcaption>" + html_text(f.title) + " — <code>figures/" + html_text(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
+        h += "<figure><img alt=\"" + html_text(f.title) + "\" src=\"data:image/png;base64," +
+             base64(read_binary(figure_folder / (f.stem + ".png"))) + "\"><figcaption>" + html_text(f.title) + " — <code>figures/" +
+             html_text(f.stem) + ".{png,svg,pdf,dat,gp}</code></figcaption></figure>\n";
     }
     h += "<h2>Failures</h2>\n" + failures_table(lb);
     if (!ctx.problems.empty()) {

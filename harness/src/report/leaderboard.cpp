@@ -1,8 +1,8 @@
 #include "report/leaderboard.hpp"
 
 #include "metrics/metric_catalog.hpp"
-#include "report/bootstrap.hpp"
 #include "record/host_info.hpp"
+#include "report/bootstrap.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -30,7 +30,9 @@ nlohmann::json within_gt_error(const RunRecord& r) {
     for (const auto& [k, v] : r.metrics) {
         const metrics::MetricInfo* m = metrics::find_metric(k);
         const metrics::GtAccuracy kind = m ? m->accuracy : metrics::GtAccuracy::none;
-        const double sigma = kind == metrics::GtAccuracy::rotation ? acc.rotation_deg : kind == metrics::GtAccuracy::position ? acc.position_m : 0.0;
+        const double sigma = kind == metrics::GtAccuracy::rotation   ? acc.rotation_deg
+                             : kind == metrics::GtAccuracy::position ? acc.position_m
+                                                                     : 0.0;
         if (sigma > 0 && v <= sigma) list.push_back(k);
     }
     return list;
@@ -91,17 +93,18 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
         nlohmann::json jcells = nlohmann::json::array();
         std::size_t failed = 0;
         for (const RunRecord* r : cells) {
-            jcells.push_back({{"id", r->cell.id},
-                              {"dataset", r->cell.dataset},
-                              {"sequence", r->cell.sequence},
-                              {"sensor", r->cell.sensor},
-                              {"repeat", r->cell.repeat},
-                              {"seed", r->cell.seed},
-                              {"status", r->ok ? "ok" : "failed"},
-                              {"reason", r->reason},
-                              {"metrics", metrics_json(r->metrics)},
-                              {"gt_accuracy", {{"position_m", r->cell.gt_accuracy.position_m}, {"rotation_deg", r->cell.gt_accuracy.rotation_deg}}},
-                              {"within_gt_error", within_gt_error(*r)}});
+            jcells.push_back(
+                {{"id", r->cell.id},
+                 {"dataset", r->cell.dataset},
+                 {"sequence", r->cell.sequence},
+                 {"sensor", r->cell.sensor},
+                 {"repeat", r->cell.repeat},
+                 {"seed", r->cell.seed},
+                 {"status", r->ok ? "ok" : "failed"},
+                 {"reason", r->reason},
+                 {"metrics", metrics_json(r->metrics)},
+                 {"gt_accuracy", {{"position_m", r->cell.gt_accuracy.position_m}, {"rotation_deg", r->cell.gt_accuracy.rotation_deg}}},
+                 {"within_gt_error", within_gt_error(*r)}});
             if (!r->ok) {
                 ++failed;
                 failures.push_back({{"id", r->cell.id},
@@ -130,7 +133,8 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
             mean /= static_cast<double>(values.size());
             for (double v : values) var += (v - mean) * (v - mean);
             const auto [lo, hi] = bootstrap_mean_ci(values, bootstrap);
-            aggregate[metric] = {{"mean", mean}, {"std", std::sqrt(var / static_cast<double>(values.size()))}, {"n", values.size()}, {"ci95", {lo, hi}}};
+            aggregate[metric] = {
+                {"mean", mean}, {"std", std::sqrt(var / static_cast<double>(values.size()))}, {"n", values.size()}, {"ci95", {lo, hi}}};
         }
         e["complete"] = failed == 0;
         e["failed_cells"] = failed;
@@ -138,7 +142,9 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
         nlohmann::json crit = nlohmann::json::array();
         for (const Criterion& c : ctx.criteria) {
             const auto v = criterion_value(cells, c.metric);
-            crit.push_back({{"criterion", c.text}, {"required", c.required}, {"value", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
+            crit.push_back({{"criterion", c.text},
+                            {"required", c.required},
+                            {"value", v ? nlohmann::json(*v) : nlohmann::json(nullptr)},
                             {"passed", v.has_value() && criterion_holds(c, *v)}});
         }
         e["criteria"] = crit;
@@ -152,7 +158,8 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
         if (list[i]["complete"].get<bool>() && list[i]["aggregate"].contains(ctx.rank_by)) ranked.push_back(i);
     const bool higher = higher_is_better(ctx.rank_by);
     const auto mean_of = [&](std::size_t i) { return list[i]["aggregate"][ctx.rank_by]["mean"].get<double>(); };
-    std::stable_sort(ranked.begin(), ranked.end(), [&](std::size_t a, std::size_t b) { return higher ? mean_of(a) > mean_of(b) : mean_of(a) < mean_of(b); });
+    std::stable_sort(ranked.begin(), ranked.end(),
+                     [&](std::size_t a, std::size_t b) { return higher ? mean_of(a) > mean_of(b) : mean_of(a) < mean_of(b); });
     for (std::size_t k = 0; k < ranked.size(); ++k) list[ranked[k]]["rank"] = k + 1;
     for (std::size_t a : ranked)
         for (std::size_t b : ranked) {
@@ -176,20 +183,22 @@ nlohmann::json build_leaderboard(const std::vector<RunRecord>& records, const Le
                 if (r["criterion"] == c.text) solutions[e["entry"].get<std::string>()] = r["passed"];
         problems.push_back({{"criterion", c.text}, {"required", c.required}, {"passed_by", solutions}});
     }
-    return {{"schema_version", kLeaderboardSchemaVersion},
-            {"context",
-             {{"name", ctx.name},
-              {"generated", ctx.generated},
-              {"vobench_version", vobench_version()},
-              {"host", host_info()},
-              {"protocol", ctx.protocol},
-              {"primary_metric", ctx.rank_by},
-              {"primary_order", higher ? "descending" : "ascending"},
-              {"bootstrap", {{"method", "percentile"}, {"resamples", bootstrap.resamples}, {"confidence", bootstrap.confidence}, {"seed", bootstrap.seed}}},
-              {"ties", "entries whose 95 % bootstrap intervals of the primary metric overlap"}}},
-            {"entries", list},
-            {"problems", problems},
-            {"failures", failures}};
+    return {
+        {"schema_version", kLeaderboardSchemaVersion},
+        {"context",
+         {{"name", ctx.name},
+          {"generated", ctx.generated},
+          {"vobench_version", vobench_version()},
+          {"host", host_info()},
+          {"protocol", ctx.protocol},
+          {"primary_metric", ctx.rank_by},
+          {"primary_order", higher ? "descending" : "ascending"},
+          {"bootstrap",
+           {{"method", "percentile"}, {"resamples", bootstrap.resamples}, {"confidence", bootstrap.confidence}, {"seed", bootstrap.seed}}},
+          {"ties", "entries whose 95 % bootstrap intervals of the primary metric overlap"}}},
+        {"entries", list},
+        {"problems", problems},
+        {"failures", failures}};
 }
 
 }  // namespace vobench

@@ -7,8 +7,8 @@
 // flatter them.
 #pragma once
 
-#include "report/aggregate.hpp"
 #include "record/criterion.hpp"
+#include "report/aggregate.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -23,8 +23,8 @@ struct LeaderboardContext {
     std::string name;
     std::string rank_by = "ate.rmse";
     std::vector<Criterion> criteria;
-    nlohmann::json protocol;   // protocol_json of the cells
-    std::string generated;     // ISO date
+    nlohmann::json protocol;  // protocol_json of the cells
+    std::string generated;    // ISO date
 };
 
 // True when a larger value is better (fps), false for errors and counts.

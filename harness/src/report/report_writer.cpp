@@ -2,14 +2,14 @@
 
 #include "metrics/metric_catalog.hpp"
 #include "metrics/trajectory_io.hpp"
-#include "util/escape.hpp"
+#include "record/host_info.hpp"
+#include "record/run_record.hpp"
 #include "report/aggregate.hpp"
 #include "report/figures.hpp"
 #include "report/html_report.hpp"
 #include "report/leaderboard.hpp"
-#include "record/run_record.hpp"
 #include "report/tables.hpp"
-#include "record/host_info.hpp"
+#include "util/escape.hpp"
 #include "util/files.hpp"
 
 #include <fmt/format.h>
@@ -25,9 +25,12 @@ namespace {
 
 std::string protocol_text(const nlohmann::json& p) {
     if (!p.is_object() || !p.contains("name")) return "";
-    std::string text = fmt::format("Protocol '{}': association within {} s.", p["name"].get<std::string>(), p.value("max_difference_s", 0.02));
+    std::string text =
+        fmt::format("Protocol '{}': association within {} s.", p["name"].get<std::string>(), p.value("max_difference_s", 0.02));
     if (p.contains("ate")) text += fmt::format(" ATE after {} alignment.", p["ate"].value("alignment", "se3"));
-    if (p.contains("rpe")) text += fmt::format(" RPE at Δ = {} {} (Kraft et al. 2016, eqs. 11–12).", p["rpe"].value("delta", 4.0), p["rpe"].value("delta_unit", "f"));
+    if (p.contains("rpe"))
+        text += fmt::format(" RPE at Δ = {} {} (Kraft et al. 2016, eqs. 11–12).", p["rpe"].value("delta", 4.0),
+                            p["rpe"].value("delta_unit", "f"));
     return text;
 }
 

@@ -4,7 +4,6 @@
 // name, ranking metric and criteria; without it the defaults apply.
 #pragma once
 
-
 #include <nlohmann/json.hpp>
 
 #include <filesystem>
@@ -14,7 +13,7 @@ namespace vobench {
 
 struct ReportResult {
     std::size_t runs = 0, failed = 0;
-    std::string accuracy_markdown;          // for the terminal
+    std::string accuracy_markdown;             // for the terminal
     std::vector<std::string> failed_required;  // "entry: criterion" for each required criterion not met
     std::vector<std::string> problems;         // cells missing or unsound (load_runs): the report is incomplete
 };

@@ -17,7 +17,10 @@ struct Column {
     const char* title;
     int decimals;
 };
-const Column kAccuracy[] = {{"ate.rmse", "ATE RMSE [m]", 4}, {"ate.std", "ATE std [m]", 4}, {"rpe.trans.rmse", "RPE RMSE [m]", 4}, {"rpe.rot.rmse", "RPE RMSE [°]", 3}};
+const Column kAccuracy[] = {{"ate.rmse", "ATE RMSE [m]", 4},
+                            {"ate.std", "ATE std [m]", 4},
+                            {"rpe.trans.rmse", "RPE RMSE [m]", 4},
+                            {"rpe.rot.rmse", "RPE RMSE [°]", 3}};
 
 double gt_sigma(const RunGroup* g, const Column& c) {
     if (!g || g->runs.empty()) return 0;
@@ -35,7 +38,8 @@ std::string format_metric(const RunGroup* group, const std::string& metric, int 
     if (!group) return "–";
     const auto s = summarize(*group, metric);
     if (!s) return group->failed() == group->runs.size() ? "failed" : "–";
-    std::string text = s->n > 1 ? fmt::format("{:.{}f} ± {:.{}f}", s->mean, decimals, s->std, decimals) : fmt::format("{:.{}f}", s->mean, decimals);
+    std::string text =
+        s->n > 1 ? fmt::format("{:.{}f} ± {:.{}f}", s->mean, decimals, s->std, decimals) : fmt::format("{:.{}f}", s->mean, decimals);
     if (group->failed() > 0) text += "†";
     if (sigma > 0 && s->mean <= sigma) text += "‡";
     return text;
@@ -65,17 +69,20 @@ std::string accuracy_markdown(const std::vector<RunGroup>& groups) {
 }
 
 std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
-    std::string md = fmt::format("# {} — vobench summary\n\nGenerated {}. {}\n\n", markdown_text(ctx.name), markdown_text(ctx.generated), markdown_text(ctx.protocol_text));
-    md += "## Accuracy (layout of Table 5, Kraft et al. 2016)\n\n"
-          "Mean ± std over repeats. † some repeats failed (see Failures); ‡ within the ground truth's declared accuracy.\n\n";
+    std::string md = fmt::format("# {} — vobench summary\n\nGenerated {}. {}\n\n", markdown_text(ctx.name), markdown_text(ctx.generated),
+                                 markdown_text(ctx.protocol_text));
+    md +=
+        "## Accuracy (layout of Table 5, Kraft et al. 2016)\n\n"
+        "Mean ± std over repeats. † some repeats failed (see Failures); ‡ within the ground truth's declared accuracy.\n\n";
     md += accuracy_markdown(groups);
     md += "Ground truth's declared accuracy (1σ; Ceriani et al. 2009):";
     for (const auto& [dataset, a] : dataset_accuracies(groups))
         md += fmt::format(" {}: {}, {};", markdown_text(dataset), accuracy_text(a.position_m, "m"), accuracy_text(a.rotation_deg, "°"));
     md.back() = '.';
-    md += "\n\n## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n"
-          "Frame reading: ms per frame spent reading and decoding, outside the timed call. Harness overhead: the rest of the frame "
-          "loop's wall time (hand-over, streaming results), as a share of it.\n\n";
+    md +=
+        "\n\n## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n"
+        "Frame reading: ms per frame spent reading and decoding, outside the timed call. Harness overhead: the rest of the frame "
+        "loop's wall time (hand-over, streaming results), as a share of it.\n\n";
     for (const std::string& entry : entries_of(groups)) {
         const auto stages = stages_of(groups, entry);
         md += fmt::format("### {}\n\n| sequence | sensor |", markdown_text(entry));
@@ -89,8 +96,7 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
             for (const std::string& s : stages) md += " " + opt(stage_mean_ms(g, s), 3) + " |";
             for (const char* f : {"mean_ms", "median_ms", "p95_ms", "max_ms"}) md += " " + opt(timing_mean(g, f), 3) + " |";
             md += " " + opt(timing_mean(g, "fps"), 1) + " | " + opt(timing_mean(g, "read_ms_per_frame"), 3) + " | " +
-                  opt(timing_mean(g, "peak_rss_mb"), 0) + " | " +
-                  opt(timing_mean(g, "harness_overhead_pct"), 1) + " |\n";
+                  opt(timing_mean(g, "peak_rss_mb"), 0) + " | " + opt(timing_mean(g, "harness_overhead_pct"), 1) + " |\n";
         }
         md += "\n";
     }
@@ -98,11 +104,13 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
     for (const RunGroup& g : groups)
         for (const RunRecord* r : g.runs)
             if (!r->ok)
-                failures += fmt::format("| {} | {} | {} | {} | {} | {} |\n", markdown_text(r->cell.id.substr(0, 12)), markdown_text(g.row_label()),
-                                        markdown_text(sensor_title(g.sensor)), markdown_text(g.entry), markdown_text(r->reason),
-                                        r->partial ? fmt::format("{} frames kept", r->run.value("frames", 0)) : "none");
+                failures +=
+                    fmt::format("| {} | {} | {} | {} | {} | {} |\n", markdown_text(r->cell.id.substr(0, 12)), markdown_text(g.row_label()),
+                                markdown_text(sensor_title(g.sensor)), markdown_text(g.entry), markdown_text(r->reason),
+                                r->partial ? fmt::format("{} frames kept", r->run.value("frames", 0)) : "none");
     if (!failures.empty())
-        md += "## Failures\n\n| cell | sequence | sensor | entry | reason | partial trajectory |\n|---|---|---|---|---|---|\n" + failures + "\n";
+        md += "## Failures\n\n| cell | sequence | sensor | entry | reason | partial trajectory |\n|---|---|---|---|---|---|\n" + failures +
+              "\n";
     if (!ctx.problems.empty()) {
         md += "## Missing or unreadable cells (this report is incomplete)\n\n";
         for (const std::string& p : ctx.problems) md += "- " + markdown_text(p) + "\n";
@@ -112,8 +120,8 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
 }
 
 std::string summary_csv(const std::vector<RunGroup>& groups) {
-    static const char* kMetrics[] = {"ate.rmse", "ate.mean", "ate.median", "ate.std", "ate.max", "rpe.trans.rmse", "rpe.trans.mean",
-                                     "rpe.rot.rmse", "rpe.rot.mean", "lost_frames", "failed_frames"};
+    static const char* kMetrics[] = {"ate.rmse",       "ate.mean",     "ate.median",   "ate.std",     "ate.max",      "rpe.trans.rmse",
+                                     "rpe.trans.mean", "rpe.rot.rmse", "rpe.rot.mean", "lost_frames", "failed_frames"};
     static const char* kTiming[] = {"mean_ms", "median_ms", "p95_ms", "max_ms", "fps", "peak_rss_mb", "harness_overhead_pct"};
     const auto quote = [](const std::string& s) { return csv_field(s); };
     std::string csv = "entry,algorithm,params,dataset,sequence,sensor,repeats,failed";
@@ -138,8 +146,8 @@ std::string summary_csv(const std::vector<RunGroup>& groups) {
 }
 
 std::string summary_latex(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
-    std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n", latex_comment(ctx.name),
-                                  latex_comment(ctx.generated), latex_comment(ctx.protocol_text));
+    std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n",
+                                  latex_comment(ctx.name), latex_comment(ctx.generated), latex_comment(ctx.protocol_text));
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
         tex += "\\begin{table}\n\\centering\n\\caption{" + latex_text(entry) +
@@ -148,8 +156,7 @@ std::string summary_latex(const std::vector<RunGroup>& groups, const ReportConte
         tex += "}\n\\toprule\n";
         for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_text(sensor_title(s)) + "}";
         tex += " \\\\\nSequence";
-        for (std::size_t k = 0; k < sensors.size(); ++k)
-            tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
+        for (std::size_t k = 0; k < sensors.size(); ++k) tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
         tex += " \\\\\n\\midrule\n";
         for (const std::string& row : rows_of(groups, entry)) {
             tex += latex_text(row);
@@ -159,11 +166,20 @@ std::string summary_latex(const std::vector<RunGroup>& groups, const ReportConte
                     std::string v = format_metric(g, c.metric, c.decimals, gt_sigma(g, c));
                     std::string t;
                     for (std::size_t i = 0; i < v.size();) {  // ± † ‡ as LaTeX
-                        if (v.compare(i, 2, "±") == 0) { t += "$\\pm$"; i += 2; }
-                        else if (v.compare(i, 3, "†") == 0) { t += "$^\\dagger$"; i += 3; }
-                        else if (v.compare(i, 3, "‡") == 0) { t += "$^\\ddagger$"; i += 3; }
-                        else if (v.compare(i, 3, "–") == 0) { t += "--"; i += 3; }
-                        else t += v[i++];
+                        if (v.compare(i, 2, "±") == 0) {
+                            t += "$\\pm$";
+                            i += 2;
+                        } else if (v.compare(i, 3, "†") == 0) {
+                            t += "$^\\dagger$";
+                            i += 3;
+                        } else if (v.compare(i, 3, "‡") == 0) {
+                            t += "$^\\ddagger$";
+                            i += 3;
+                        } else if (v.compare(i, 3, "–") == 0) {
+                            t += "--";
+                            i += 3;
+                        } else
+                            t += v[i++];
                     }
                     tex += " & " + t;
                 }

@@ -15,10 +15,10 @@
 namespace vobench {
 
 struct ReportContext {
-    std::string name;               // the sweep's name
-    std::string protocol_text;      // "ATE after se3 alignment; RPE at Δ = 4 f (paper protocol …)"
+    std::string name;           // the sweep's name
+    std::string protocol_text;  // "ATE after se3 alignment; RPE at Δ = 4 f (paper protocol …)"
     std::string rank_by = "ate.rmse";
-    std::string generated;          // ISO date
+    std::string generated;  // ISO date
     // Cells the report could not show: "<id>: missing (in cells.json, no record)" or "<id>: <why
     // the record is unsound>". Listed on every output; a report with any is incomplete.
     std::vector<std::string> problems;

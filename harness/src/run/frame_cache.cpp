@@ -1,8 +1,8 @@
 #include "run/frame_cache.hpp"
 
 #include "metrics/trajectory_io.hpp"
-#include "util/hash.hpp"
 #include "util/files.hpp"
+#include "util/hash.hpp"
 
 #include <fmt/format.h>
 #include <zstd.h>
@@ -47,9 +47,7 @@ fs::path FrameCache::file_of(uint64_t index) const { return folder_ / fmt::forma
 
 bool FrameCache::complete() const { return fs::exists(folder_ / "complete"); }
 
-void FrameCache::mark_complete(uint64_t frames) const {
-    write_file_atomic(folder_ / "complete", fmt::format("{} frames\n", frames));
-}
+void FrameCache::mark_complete(uint64_t frames) const { write_file_atomic(folder_ / "complete", fmt::format("{} frames\n", frames)); }
 
 void FrameCache::store(uint64_t index, const vobench_frame& f) const {
     FrameHeader h{};

@@ -66,7 +66,8 @@ std::string check_names(const FrameRecord& rec, std::unordered_set<std::string>&
         if (!std::isfinite(v)) return fmt::format("reported the non-finite value {} for counter '{}'", v, clean_text(name));
         seen.insert("c:" + name);
     }
-    if (seen.size() > kMaxNamesPerRun) return fmt::format("emitted more than {} distinct stage and counter names in one run", kMaxNamesPerRun);
+    if (seen.size() > kMaxNamesPerRun)
+        return fmt::format("emitted more than {} distinct stage and counter names in one run", kMaxNamesPerRun);
     return "";
 }
 
@@ -111,8 +112,9 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         }
         const vobench_frame& frame = owned->frame;
         if (!std::isfinite(frame.timestamp) || !(frame.timestamp > last_stamp)) {
-            result.error = fmt::format("reader '{}' gave frame {} the stamp {}, {}", dataset.plugin().name(), i, frame.timestamp,
-                                       std::isfinite(frame.timestamp) ? fmt::format("not after the previous frame's {}", last_stamp) : "not a finite number");
+            result.error = fmt::format(
+                "reader '{}' gave frame {} the stamp {}, {}", dataset.plugin().name(), i, frame.timestamp,
+                std::isfinite(frame.timestamp) ? fmt::format("not after the previous frame's {}", last_stamp) : "not a finite number");
             break;
         }
         last_stamp = frame.timestamp;
@@ -124,8 +126,8 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         const vobench_status status = odometry.process(frame, pose, tracking);
         const auto t1 = std::chrono::steady_clock::now();
         if (status != VOBENCH_OK) {
-            result.error = fmt::format("plugin '{}' failed at frame {} ({}): {}", odometry.plugin().name(), i,
-                                       status_name(status), odometry.last_error());
+            result.error = fmt::format("plugin '{}' failed at frame {} ({}): {}", odometry.plugin().name(), i, status_name(status),
+                                       odometry.last_error());
             break;
         }
         FrameRecord rec;
@@ -143,11 +145,13 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         }
         // The ABI asks for a unit quaternion; normalising a wrong one silently would hide a plugin bug.
         if (std::abs(q.norm() - 1.0) > 1e-6) {
-            result.error = fmt::format("plugin '{}' returned a quaternion of norm {:.9g} (not unit) at frame {}", odometry.plugin().name(), q.norm(), i);
+            result.error = fmt::format("plugin '{}' returned a quaternion of norm {:.9g} (not unit) at frame {}", odometry.plugin().name(),
+                                       q.norm(), i);
             break;
         }
         if (tracking < VOBENCH_TRACKING_OK || tracking > VOBENCH_TRACKING_FAILED) {
-            result.error = fmt::format("plugin '{}' returned the unknown tracking status {} at frame {}", odometry.plugin().name(), tracking, i);
+            result.error =
+                fmt::format("plugin '{}' returned the unknown tracking status {} at frame {}", odometry.plugin().name(), tracking, i);
             break;
         }
         if (const std::string why = check_names(rec, names_seen); !why.empty()) {
@@ -208,8 +212,8 @@ void write_track_outputs(const TrackResult& result, const std::filesystem::path&
     static const char* kStatus[] = {"ok", "lost", "failed"};
     std::vector<std::string> row_stages, row_counters;
     for (const FrameRecord& f : result.frames) {
-        csv += fmt::format("{},{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6, static_cast<double>(f.read_ns) * 1e-6,
-                           f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
+        csv += fmt::format("{},{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6,
+                           static_cast<double>(f.read_ns) * 1e-6, f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
         row_stages.assign(stages.size(), "0");
         row_counters.assign(counters.size(), "");
         for (const auto& [name, ns] : f.stages) row_stages[stage_column[name]] = fmt::format("{}", static_cast<double>(ns) * 1e-6);

@@ -20,12 +20,12 @@
 namespace vobench {
 
 struct TrackOptions {
-    std::string dataset;          // reader plugin name or path
-    std::string path;             // sequence folder
+    std::string dataset;  // reader plugin name or path
+    std::string path;     // sequence folder
     ParamMap dataset_options;
-    std::string algorithm;        // odometry plugin name or path
+    std::string algorithm;  // odometry plugin name or path
     ParamMap params;
-    uint64_t max_frames = 0;      // 0: all
+    uint64_t max_frames = 0;  // 0: all
     uint64_t seed = 1;
     metrics::Protocol protocol;
     std::filesystem::path frame_cache;  // root of the decoded-frame cache; empty: no cache
@@ -37,23 +37,22 @@ struct TrackOptions {
     std::function<void(const FrameRecord&, const metrics::StampedPose&)> on_frame;
 };
 
-
 struct TrackResult {
     metrics::Trajectory estimate;
     std::vector<FrameRecord> frames;
-    std::size_t failed_frames = 0;        // frames whose tracking status was not OK
-    std::string error;                    // set when the plugin or reader failed and the run stopped
+    std::size_t failed_frames = 0;  // frames whose tracking status was not OK
+    std::string error;              // set when the plugin or reader failed and the run stopped
     std::optional<metrics::Evaluation> evaluation;
-    std::string evaluation_error;         // why there is no evaluation (no ground truth, no overlap ...)
+    std::string evaluation_error;  // why there is no evaluation (no ground truth, no overlap ...)
     std::string sequence, sensor;
-    int64_t loop_wall_ns = 0;             // wall time of the whole frame loop (reading included)
+    int64_t loop_wall_ns = 0;  // wall time of the whole frame loop (reading included)
     double mean_ms() const;
 };
 
 // What a plugin may emit per call and per run: past these the run fails with the reason (so that a
 // plugin cannot make the supervisor's work grow without bound).
 constexpr std::size_t kMaxNamesPerFrame = HostContext::kMaxTracked;  // stage names, and counter names, in one call
-constexpr std::size_t kMaxNamesPerRun = 1024;      // distinct stage and counter names in one run
+constexpr std::size_t kMaxNamesPerRun = 1024;                        // distinct stage and counter names in one run
 constexpr std::size_t kMaxNameBytes = 128;
 
 // Runs the loop; a plugin error, a bad frame, a non-finite or non-unit pose, a non-finite counter, a

@@ -2,8 +2,8 @@
 
 #include "sweep/dataset_prep.hpp"
 #include "sweep/sequence_probe.hpp"
-#include "util/hash.hpp"
 #include "util/files.hpp"
+#include "util/hash.hpp"
 
 #include <fnmatch.h>
 
@@ -32,8 +32,8 @@ std::string cell_id(const Cell& c) {
     nlohmann::json j = cell_to_json(c);
     j.erase("id");
     j.erase("limits");
-    j.erase("path");         // the content checksum stands for it: a moved data set keeps its results
-    j.erase("plugin_file");  // the binary hash stands for it
+    j.erase("path");             // the content checksum stands for it: a moved data set keeps its results
+    j.erase("plugin_file");      // the binary hash stands for it
     j.erase("frames_declared");  // derived from the reader and the checksum
     Hasher h;
     h.add(json_text(j, -1));
@@ -48,8 +48,10 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
     std::vector<std::pair<std::string, std::string>> binaries;  // (file, hash) per algorithm
     for (const AlgorithmSpec& a : config.algorithms) {
         std::optional<fs::path> file;
-        if (a.load_error.empty()) file = registry.describe(a.plugin, VOBENCH_KIND_ODOMETRY).path;
-        else file = registry.locate(a.plugin);
+        if (a.load_error.empty())
+            file = registry.describe(a.plugin, VOBENCH_KIND_ODOMETRY).path;
+        else
+            file = registry.locate(a.plugin);
         binaries.emplace_back(file ? fs::absolute(*file).lexically_normal().string() : "", file ? file_hash(*file) : "");
     }
     std::vector<Cell> cells;
@@ -60,8 +62,8 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
             const std::string checksum = fs::is_directory(s.path) ? dataset_checksum(s.path, memo) : "to-render";
             const PluginInfo sequence_reader = s.reader == d.reader ? reader : registry.describe(s.reader, VOBENCH_KIND_DATASET);
             const int64_t declared = render && checksum != "to-render"
-                                         ? probe_frame_count(fs::absolute(sequence_reader.path).string(), file_hash(sequence_reader.path), s.path,
-                                                             s.options, checksum, out, config.limits.timeout_s)
+                                         ? probe_frame_count(fs::absolute(sequence_reader.path).string(), file_hash(sequence_reader.path),
+                                                             s.path, s.options, checksum, out, config.limits.timeout_s)
                                          : -1;
             for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {
                 const AlgorithmSpec& a = config.algorithms[ai];

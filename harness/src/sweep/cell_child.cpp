@@ -6,14 +6,14 @@
 #include "util/files.hpp"
 #include "util/subprocess.hpp"
 
-#include <opencv2/core/utility.hpp>
 #include <tbb/global_control.h>
+#include <opencv2/core/utility.hpp>
 
+#include <sys/prctl.h>
+#include <unistd.h>
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <sys/prctl.h>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -25,10 +25,12 @@ int exec_cell(const fs::path& work) {
     // A plugin that calls exit() does so while the frame-reading thread still runs; the static
     // destructors that exit() would run next can crash under it and turn "exited with code 3" into
     // a SIGSEGV. Registered last, this handler runs first and ends the process with the plugin's code.
-    ::on_exit([](int status, void*) {
-        std::fflush(nullptr);
-        ::_exit(status);
-    }, nullptr);
+    ::on_exit(
+        [](int status, void*) {
+            std::fflush(nullptr);
+            ::_exit(status);
+        },
+        nullptr);
     const nlohmann::json cell_json = read_json_or_null(work / "cell.json");
     Cell cell;
     try {
@@ -69,8 +71,10 @@ int exec_cell(const fs::path& work) {
                            {"frames_to_run", expected},
                            {"gt_count", info.gt_count},
                            // The reader's declared ground-truth accuracy (API 2; -1: not known or an API-1 reader).
-                           {"gt_position_sigma_m", VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_position_sigma_m) ? info.gt_position_sigma_m : -1.0},
-                           {"gt_rotation_sigma_deg", VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_rotation_sigma_deg) ? info.gt_rotation_sigma_deg : -1.0},
+                           {"gt_position_sigma_m",
+                            VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_position_sigma_m) ? info.gt_position_sigma_m : -1.0},
+                           {"gt_rotation_sigma_deg",
+                            VOBENCH_HAS_FIELD(&info, vobench_sequence_info, gt_rotation_sigma_deg) ? info.gt_rotation_sigma_deg : -1.0},
                            {"camera", {{"width", c.width}, {"height", c.height}, {"fx", c.fx}, {"fy", c.fy}, {"cx", c.cx}, {"cy", c.cy}}}});
         const PluginInfo& d = plugin.info();
         write_json_atomic(work / "plugin.json", {{"name", d.name},
@@ -85,8 +89,9 @@ int exec_cell(const fs::path& work) {
         const std::string line = encode_frame(f, p);
         // fflush: into the kernel, so the frame survives the process dying on the next one.
         const bool written = std::fwrite(line.data(), 1, line.size(), stream) == line.size() && std::fflush(stream) == 0;
-        if (!written && stream_error.empty()) stream_error = "the frame stream could not be written at frame " + std::to_string(f.index) +
-                                                             " (its file descriptor was closed or broken inside the process)";
+        if (!written && stream_error.empty())
+            stream_error = "the frame stream could not be written at frame " + std::to_string(f.index) +
+                           " (its file descriptor was closed or broken inside the process)";
     };
     nlohmann::json result;
     try {
@@ -94,8 +99,11 @@ int exec_cell(const fs::path& work) {
         int64_t timed = 0;
         for (const FrameRecord& f : r.frames) timed += f.process_ns;
         const std::string error = r.error.empty() ? stream_error : r.error;
-        result = {{"status", error.empty() ? "ok" : "failed"}, {"error", error}, {"frames", r.frames.size()},
-                  {"loop_wall_ns", r.loop_wall_ns}, {"timed_ns", timed}};
+        result = {{"status", error.empty() ? "ok" : "failed"},
+                  {"error", error},
+                  {"frames", r.frames.size()},
+                  {"loop_wall_ns", r.loop_wall_ns},
+                  {"timed_ns", timed}};
     } catch (const std::exception& e) {  // the reader or plugin could not start: a failed row, not a crash
         result = {{"status", "failed"}, {"error", std::string("setting up: ") + e.what()}, {"frames", 0}};
     }

@@ -22,8 +22,8 @@ namespace vobench {
 struct CellOutcome {
     std::string id;
     bool ok = false;
-    std::string reason;      // why it failed ("" when ok)
-    uint64_t frames = 0;     // frames processed
+    std::string reason;   // why it failed ("" when ok)
+    uint64_t frames = 0;  // frames processed
     double wall_s = 0;
     bool interrupted = false;  // stopped by the user: nothing was recorded, the cell is still to do
 };

@@ -7,11 +7,11 @@
 // the reason and the frame (and the trajectory up to it, marked partial).
 #include "metrics/statistics.hpp"
 #include "record/frame_stream.hpp"
-#include "record/results_dir.hpp"
-#include "run/track.hpp"
-#include "record/run_record.hpp"
-#include "sweep/cell_runner.hpp"
 #include "record/host_info.hpp"
+#include "record/results_dir.hpp"
+#include "record/run_record.hpp"
+#include "run/track.hpp"
+#include "sweep/cell_runner.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
 #include "util/subprocess.hpp"
@@ -119,8 +119,13 @@ nlohmann::json well_typed(const nlohmann::json& from, const std::vector<std::pai
 }
 
 nlohmann::json sequence_fields(const nlohmann::json& s) {
-    nlohmann::json out = well_typed(s, {{"name", 's'}, {"sensor", 's'}, {"frame_count", 'u'}, {"frames_to_run", 'u'}, {"gt_count", 'u'},
-                                        {"gt_position_sigma_m", 'n'}, {"gt_rotation_sigma_deg", 'n'}});
+    nlohmann::json out = well_typed(s, {{"name", 's'},
+                                        {"sensor", 's'},
+                                        {"frame_count", 'u'},
+                                        {"frames_to_run", 'u'},
+                                        {"gt_count", 'u'},
+                                        {"gt_position_sigma_m", 'n'},
+                                        {"gt_rotation_sigma_deg", 'n'}});
     if (s.is_object() && s.contains("camera"))
         out["camera"] = well_typed(s["camera"], {{"width", 'n'}, {"height", 'n'}, {"fx", 'n'}, {"fy", 'n'}, {"cx", 'n'}, {"cy", 'n'}});
     return out;
@@ -131,8 +136,8 @@ nlohmann::json plugin_fields(const nlohmann::json& p) {
 }
 
 // Why the cell is not a success, or "" when it is. Checked in the order a user would want to read.
-std::string verdict(bool ran, const std::string& not_run_reason, const ChildResult& child, const ChildReport& report, const FrameStream& frames,
-                    const nlohmann::json& sequence, const std::string& plugin, int64_t required) {
+std::string verdict(bool ran, const std::string& not_run_reason, const ChildResult& child, const ChildReport& report,
+                    const FrameStream& frames, const nlohmann::json& sequence, const std::string& plugin, int64_t required) {
     const std::size_t got = frames.frames.size();
     if (!ran) return not_run_reason;
     if (child.signal_blame != 0)
@@ -149,16 +154,18 @@ std::string verdict(bool ran, const std::string& not_run_reason, const ChildResu
     const uint64_t said = unsigned_field(sequence, "frames_to_run");
     // The count the reader gave when probed alone wins over what the cell's process wrote.
     if (required >= 0 && said != static_cast<uint64_t>(required))
-        return fmt::format("the cell's process said the sequence has {} frames to run, its reader declared {} when probed alone (files "
-                           "of the cell were overwritten?)",
-                           said, required);
+        return fmt::format(
+            "the cell's process said the sequence has {} frames to run, its reader declared {} when probed alone (files "
+            "of the cell were overwritten?)",
+            said, required);
     const uint64_t expected = said;
     if (expected == 0) return "the reader declared no frames";
     if (got != expected)
         return fmt::format("plugin '{}': {} of the {} frames the reader declared were recorded (the run ended early without an error)",
                            plugin, got, expected);
     if (child.left_behind > 0)
-        return fmt::format("left {} process{} running after the cell ended (killed)", child.left_behind, child.left_behind == 1 ? "" : "es");
+        return fmt::format("left {} process{} running after the cell ended (killed)", child.left_behind,
+                           child.left_behind == 1 ? "" : "es");
     return "";
 }
 
@@ -203,8 +210,8 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     CellOutcome o;
     o.id = cell.id;
     o.frames = frames.frames.size();
-    o.reason = verdict(ran, not_run_reason, child, child_report(result), frames, described ? sequence : nlohmann::json(nullptr), cell.plugin,
-                       cell.frames_required());
+    o.reason = verdict(ran, not_run_reason, child, child_report(result), frames, described ? sequence : nlohmann::json(nullptr),
+                       cell.plugin, cell.frames_required());
 
     TrackResult track;
     track.estimate = frames.poses;
@@ -233,25 +240,26 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     }
     const nlohmann::json timing = timing_summary(frames, result, child);
 
-    nlohmann::json run{{"schema_version", 1},
-                       {"cell", cell_to_json(cell)},
-                       {"status", o.ok ? "ok" : "failed"},
-                       {"reason", o.reason},
-                       {"failed_at_frame", o.ok ? nlohmann::json(nullptr) : nlohmann::json(frames.frames.size())},
-                       {"partial", !o.ok && !frames.frames.empty()},
-                       {"frames", frames.frames.size()},
-                       {"frames_expected", unsigned_field(sequence, "frames_to_run")},
-                       {"lost_frames", frames.lost_frames},
-                       {"plugin", plugin},
-                       {"sequence", sequence},
-                       {"host", host_info()},
-                       {"started", started},
-                       {"finished", utc_now_iso()},
-                       {"child",
-                        {{"outcome", ran ? child.describe() : "not started"}, {"log", "child.log"}, {"processes_left_behind", child.left_behind}}},
-                       {"timing", timing},
-                       {"metrics", o.ok ? nlohmann::json(metrics) : nlohmann::json::object()},
-                       {"evaluation", evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}}}};
+    nlohmann::json run{
+        {"schema_version", 1},
+        {"cell", cell_to_json(cell)},
+        {"status", o.ok ? "ok" : "failed"},
+        {"reason", o.reason},
+        {"failed_at_frame", o.ok ? nlohmann::json(nullptr) : nlohmann::json(frames.frames.size())},
+        {"partial", !o.ok && !frames.frames.empty()},
+        {"frames", frames.frames.size()},
+        {"frames_expected", unsigned_field(sequence, "frames_to_run")},
+        {"lost_frames", frames.lost_frames},
+        {"plugin", plugin},
+        {"sequence", sequence},
+        {"host", host_info()},
+        {"started", started},
+        {"finished", utc_now_iso()},
+        {"child",
+         {{"outcome", ran ? child.describe() : "not started"}, {"log", "child.log"}, {"processes_left_behind", child.left_behind}}},
+        {"timing", timing},
+        {"metrics", o.ok ? nlohmann::json(metrics) : nlohmann::json::object()},
+        {"evaluation", evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}}}};
     if (fs::exists(work / "child.log")) keep_log_tail(work / "child.log", 64 * 1024);
     write_json_atomic(work / "run.json", run);  // last: its presence marks the cell finished
     fs::remove_all(final_dir);

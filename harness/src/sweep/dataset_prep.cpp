@@ -3,12 +3,12 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/sequence_writer.hpp"
 #include "synth/trajectory_families.hpp"
-#include "util/hash.hpp"
 #include "util/files.hpp"
+#include "util/hash.hpp"
 
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 #include <spdlog/spdlog.h>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 
@@ -78,7 +78,8 @@ std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginReg
                 try {
                     out.push_back({name, sensor, ensure_rendered(*d.synthetic, trajectory, sensor, render), "tum", d.options});
                 } catch (const std::exception& e) {
-                    throw std::runtime_error(fmt::format("dataset '{}' ({}): rendering {} for {}: {}", d.name, d.where, trajectory, sensor, e.what()));
+                    throw std::runtime_error(
+                        fmt::format("dataset '{}' ({}): rendering {} for {}: {}", d.name, d.where, trajectory, sensor, e.what()));
                 }
             }
         return out;

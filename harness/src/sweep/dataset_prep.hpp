@@ -11,11 +11,11 @@
 namespace vobench {
 
 struct SequenceRef {
-    std::string name;       // e.g. "explore1", "rgbd_dataset_freiburg1_rpy"
-    std::string sensor;     // "kinect1", "kinect2" or "" (the reader's)
+    std::string name;    // e.g. "explore1", "rgbd_dataset_freiburg1_rpy"
+    std::string sensor;  // "kinect1", "kinect2" or "" (the reader's)
     std::filesystem::path path;
     std::string reader;
-    ParamMap options;       // the dataset's options, plus sensor= where the reader takes it
+    ParamMap options;  // the dataset's options, plus sensor= where the reader takes it
 };
 
 // Renders what is missing (unless `render` is false: then only the folders a render would make are

@@ -1,21 +1,21 @@
 #include "sweep/local_scheduler.hpp"
 
+#include "record/host_info.hpp"
 #include "record/results_dir.hpp"
 #include "sweep/cell_runner.hpp"
-#include "record/host_info.hpp"
 #include "util/subprocess.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include <unistd.h>
 #include <atomic>
-#include <csignal>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <mutex>
 #include <set>
 #include <thread>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -84,8 +84,8 @@ private:
             const double left = per_cell * static_cast<double>(total_ - done_);
             eta = fmt::format("{}:{:02d}", static_cast<int>(left) / 60, static_cast<int>(left) % 60);
         }
-        std::fprintf(stderr, "\r\033[K[%zu/%zu done, %zu failed, %zu running, -j %d] %.0f frames/s, ETA %s", done_, total_, failed_, running_,
-                     jobs_, elapsed > 0 ? static_cast<double>(frames_) / elapsed : 0.0, eta.c_str());
+        std::fprintf(stderr, "\r\033[K[%zu/%zu done, %zu failed, %zu running, -j %d] %.0f frames/s, ETA %s", done_, total_, failed_,
+                     running_, jobs_, elapsed > 0 ? static_cast<double>(frames_) / elapsed : 0.0, eta.c_str());
         std::fflush(stderr);
     }
     std::mutex mutex_;
@@ -126,7 +126,8 @@ public:
     InterruptGuard& operator=(const InterruptGuard&) = delete;
 
 private:
-    struct sigaction old_int_ {}, old_term_ {};
+    struct sigaction old_int_ {
+    }, old_term_{};
 };
 
 }  // namespace
@@ -148,9 +149,10 @@ void prepare_output(const std::vector<Cell>& cells, const SweepOptions& options)
     }
     if (done.empty()) return;
     if (!options.resume)
-        throw std::runtime_error(fmt::format("{} already holds {} finished cells: pass --resume to continue that sweep, or --fresh to set them "
-                                             "aside and start again",
-                                             options.out.string(), done.size()));
+        throw std::runtime_error(
+            fmt::format("{} already holds {} finished cells: pass --resume to continue that sweep, or --fresh to set them "
+                        "aside and start again",
+                        options.out.string(), done.size()));
     std::set<std::string> current;
     for (const Cell& c : cells) current.insert(c.id);
     std::size_t moved = 0;
@@ -162,7 +164,8 @@ void prepare_output(const std::vector<Cell>& cells, const SweepOptions& options)
             ++moved;
         }
     if (moved > 0)
-        spdlog::info("{} finished cells belong to another configuration or plugin build; moved to {}", moved, (options.out / "stale").string());
+        spdlog::info("{} finished cells belong to another configuration or plugin build; moved to {}", moved,
+                     (options.out / "stale").string());
 }
 
 std::vector<Cell> pending_cells(const std::vector<Cell>& cells, const SweepOptions& options) {
@@ -180,7 +183,8 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
     tally.cells = cells.size();
     const std::vector<Cell> todo = pending_cells(cells, options);
     tally.skipped = cells.size() - todo.size();
-    if (tally.skipped > 0) spdlog::info("{} of {} cells already finished or not selected; running {}", tally.skipped, cells.size(), todo.size());
+    if (tally.skipped > 0)
+        spdlog::info("{} of {} cells already finished or not selected; running {}", tally.skipped, cells.size(), todo.size());
     // Work left behind by a killed run: never trusted, always redone.
     fs::remove_all(options.out / "runs" / ".work");
     const auto start = std::chrono::steady_clock::now();

@@ -15,8 +15,8 @@ struct SweepOptions {
     std::filesystem::path out;
     int jobs = 1;
     bool resume = false;
-    bool fresh = false;          // discard earlier results in `out` (moved to out/discarded-<time>/)
-    std::string only;            // wildcard on dataset/sequence/sensor/algorithm/id
+    bool fresh = false;  // discard earlier results in `out` (moved to out/discarded-<time>/)
+    std::string only;    // wildcard on dataset/sequence/sensor/algorithm/id
 };
 
 struct SweepTally {

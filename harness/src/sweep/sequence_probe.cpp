@@ -5,9 +5,9 @@
 #include "util/hash.hpp"
 #include "util/subprocess.hpp"
 
+#include <unistd.h>
 #include <cstdio>
 #include <mutex>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -44,8 +44,8 @@ int64_t probe_frame_count(const std::string& reader_file, const std::string& rea
     ChildLimits limits;
     limits.timeout_s = timeout_s;
     limits.contain = true;
-    const ChildResult child =
-        run_self_limited({"sequence-probe", reader_file, fs::absolute(sequence).string(), nlohmann::json(options).dump(), result.string()}, limits);
+    const ChildResult child = run_self_limited(
+        {"sequence-probe", reader_file, fs::absolute(sequence).string(), nlohmann::json(options).dump(), result.string()}, limits);
     const nlohmann::json answer = read_json_or_null(result, 1 << 20);
     fs::remove(result, ec);
     if (!(child.exited && child.exit_code == 0) || !answer.is_object() || !answer.contains("frame_count") ||

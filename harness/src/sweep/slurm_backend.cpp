@@ -1,21 +1,21 @@
 #include "sweep/slurm_backend.hpp"
 
 #include "metrics/trajectory_io.hpp"
-#include "sweep/cell_runner.hpp"
 #include "record/host_info.hpp"
-#include "util/subprocess.hpp"
+#include "sweep/cell_runner.hpp"
 #include "util/files.hpp"
+#include "util/subprocess.hpp"
 
-#include <boost/dll/runtime_symbol_info.hpp>
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <boost/dll/runtime_symbol_info.hpp>
 
+#include <unistd.h>
 #include <chrono>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
 #include <thread>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -81,8 +81,7 @@ std::map<int, std::map<std::string, std::string>> task_states(const std::string&
                 const int task = std::stoi(line.substr(us + 1, bar - us - 1));
                 tasks[task] = {{"JobState", line.substr(bar + 1, bar2 - bar - 1)},
                                {"ExitCode", bar2 == std::string::npos ? "" : line.substr(bar2 + 1)}};
-            } catch (const std::exception&) {
-            }
+            } catch (const std::exception&) {}
         }
     }
     return tasks;
@@ -109,8 +108,7 @@ std::map<int, std::map<std::string, std::string>> parse_scontrol_tasks(const std
                 const int first = std::stoi(part.substr(0, dash));
                 const int last = dash == std::string::npos ? first : std::stoi(part.substr(dash + 1));
                 for (int t = first; t <= last && t - first < 1000000; ++t) tasks[t] = fields;
-            } catch (const std::exception&) {
-            }
+            } catch (const std::exception&) {}
         }
     }
     return tasks;
@@ -121,8 +119,8 @@ std::string submit_slurm(const std::vector<Cell>& pending, const fs::path& out_i
     const fs::path out = fs::absolute(out_in).lexically_normal();
     for (const auto& j : read_jobs(out))
         if (!j.value("collected", false))
-            throw std::runtime_error(fmt::format("job {} of this folder is not collected yet: run `vobench collect {}` first", j.value("job", ""),
-                                                 out.string()));
+            throw std::runtime_error(fmt::format("job {} of this folder is not collected yet: run `vobench collect {}` first",
+                                                 j.value("job", ""), out.string()));
     fs::create_directories(out / "slurm" / "logs");
     const std::string stamp = std::to_string(std::chrono::system_clock::now().time_since_epoch().count());
     const fs::path batch = out / "slurm" / ("batch-" + stamp + ".txt");
@@ -133,8 +131,10 @@ std::string submit_slurm(const std::vector<Cell>& pending, const fs::path& out_i
     const std::size_t tasks = (pending.size() + static_cast<std::size_t>(chunk) - 1) / static_cast<std::size_t>(chunk);
 
     std::string script = "#!/bin/bash\n# written by vobench run --backend slurm; one array task runs `chunk` cells, each isolated\n";
-    script += fmt::format("#SBATCH --job-name=vobench\n#SBATCH --array=0-{}{}\n", tasks - 1, o.array_limit > 0 ? fmt::format("%{}", o.array_limit) : "");
-    script += fmt::format("#SBATCH --output={}\n#SBATCH --cpus-per-task={}\n", sh((out / "slurm" / "logs" / "%A_%a.log").string()), threads);
+    script += fmt::format("#SBATCH --job-name=vobench\n#SBATCH --array=0-{}{}\n", tasks - 1,
+                          o.array_limit > 0 ? fmt::format("%{}", o.array_limit) : "");
+    script +=
+        fmt::format("#SBATCH --output={}\n#SBATCH --cpus-per-task={}\n", sh((out / "slurm" / "logs" / "%A_%a.log").string()), threads);
     if (!o.partition.empty()) script += "#SBATCH --partition=" + o.partition + "\n";
     if (!o.account.empty()) script += "#SBATCH --account=" + o.account + "\n";
     if (!o.time.empty()) script += "#SBATCH --time=" + o.time + "\n";
@@ -151,8 +151,14 @@ std::string submit_slurm(const std::vector<Cell>& pending, const fs::path& out_i
     if (!r.exited || r.exit_code != 0 || job.empty() || job.find_first_not_of("0123456789") != std::string::npos)
         throw std::runtime_error("sbatch refused the job (" + r.describe() + "): " + r.output);
     nlohmann::json jobs = read_jobs(out);
-    jobs.push_back({{"job", job}, {"batch", batch.string()}, {"script", job_script.string()}, {"cells", pending.size()}, {"tasks", tasks},
-                    {"chunk", chunk}, {"submitted", utc_now_iso()}, {"collected", false}});
+    jobs.push_back({{"job", job},
+                    {"batch", batch.string()},
+                    {"script", job_script.string()},
+                    {"cells", pending.size()},
+                    {"tasks", tasks},
+                    {"chunk", chunk},
+                    {"submitted", utc_now_iso()},
+                    {"collected", false}});
     write_jobs(out, jobs);
     spdlog::info("submitted Slurm job {}: {} cells in {} array tasks ({} per task)", job, pending.size(), tasks, chunk);
     return job;
@@ -176,13 +182,18 @@ SweepTally follow_slurm(const fs::path& out_in, int poll_s) {
             std::size_t queued = 0, running = 0;
             std::istringstream in(q.output);
             for (std::string line; std::getline(in, line);) {
-                if (line.find("|RUNNING") != std::string::npos) ++running;
-                else if (!line.empty() && line.find("Invalid job id") == std::string::npos) ++queued;
+                if (line.find("|RUNNING") != std::string::npos)
+                    ++running;
+                else if (!line.empty() && line.find("Invalid job id") == std::string::npos)
+                    ++queued;
             }
             std::size_t done = 0;
             for (const std::string& id : ids) done += cell_finished(out, id);
-            if (tty) std::fprintf(stderr, "\r\033[K[slurm job %s] %zu/%zu cells done, %zu tasks running, %zu queued", job.c_str(), done, ids.size(), running, queued);
-            else if (done != last_done) spdlog::info("slurm job {}: {}/{} cells done, {} tasks running, {} queued", job, done, ids.size(), running, queued);
+            if (tty)
+                std::fprintf(stderr, "\r\033[K[slurm job %s] %zu/%zu cells done, %zu tasks running, %zu queued", job.c_str(), done,
+                             ids.size(), running, queued);
+            else if (done != last_done)
+                spdlog::info("slurm job {}: {}/{} cells done, {} tasks running, {} queued", job, done, ids.size(), running, queued);
             last_done = done;
             if (running + queued == 0) break;
             std::this_thread::sleep_for(std::chrono::seconds(poll_s));
@@ -216,7 +227,8 @@ SweepTally follow_slurm(const fs::path& out_in, int poll_s) {
             record_unrun_cell(cell->second, out, reason);
             ++tally.failed;
             ++tally.ran;
-            spdlog::warn("FAILED {}/{}/{} {} — {}", cell->second.dataset, cell->second.sequence, cell->second.sensor, cell->second.entry_label(), reason);
+            spdlog::warn("FAILED {}/{}/{} {} — {}", cell->second.dataset, cell->second.sequence, cell->second.sensor,
+                         cell->second.entry_label(), reason);
         }
         j["collected"] = true;
         j["collected_at"] = utc_now_iso();

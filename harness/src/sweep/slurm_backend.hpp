@@ -24,9 +24,9 @@ namespace vobench {
 
 struct SlurmOptions {
     std::string partition, account, time, mem;  // passed to sbatch when given
-    int array_limit = 0;      // at most this many tasks at once (%K); 0: Slurm's default
-    int chunk = 1;            // cells per array task
-    int poll_s = 5;           // squeue interval while following
+    int array_limit = 0;                        // at most this many tasks at once (%K); 0: Slurm's default
+    int chunk = 1;                              // cells per array task
+    int poll_s = 5;                             // squeue interval while following
 };
 
 // Submits the pending cells (all of `cells` not finished in `out`); returns the job id ("" when

@@ -233,7 +233,8 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
     }
     if (check_paths && !s.synthetic)
         for (const auto& f : s.folders())
-            if (!fs::is_directory(f.path)) r.fail(d["sequences"] ? d["sequences"] : d["path"], "no such sequence folder: " + f.path.string());
+            if (!fs::is_directory(f.path))
+                r.fail(d["sequences"] ? d["sequences"] : d["path"], "no such sequence folder: " + f.path.string());
     return s;
 }
 
@@ -294,15 +295,20 @@ std::string expand_env(const std::string& text) {
 nlohmann::json sweep_record(const SweepConfig& c) {
     nlohmann::json criteria = nlohmann::json::array();
     for (const Criterion& k : c.criteria) criteria.push_back({{"criterion", k.text}, {"required", k.required}});
-    return {{"name", c.name}, {"config_file", c.file.string()}, {"rank_by", c.rank_by}, {"criteria", criteria},
-            {"protocol", metrics::protocol_json(c.protocol)}, {"config", c.source}};
+    return {{"name", c.name},
+            {"config_file", c.file.string()},
+            {"rank_by", c.rank_by},
+            {"criteria", criteria},
+            {"protocol", metrics::protocol_json(c.protocol)},
+            {"config", c.source}};
 }
 
 SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& registry, bool check_paths) {
     const YamlReader r(file.string());
     const YAML::Node root = r.load();
-    r.only_keys(root, {"name", "output", "seed", "repeats", "seeds", "frames", "datasets", "algorithms", "protocol", "rank_by", "limits",
-                       "backend", "criteria"},
+    r.only_keys(root,
+                {"name", "output", "seed", "repeats", "seeds", "frames", "datasets", "algorithms", "protocol", "rank_by", "limits",
+                 "backend", "criteria"},
                 "the configuration");
     SweepConfig c;
     c.file = file;
@@ -329,7 +335,8 @@ SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& regist
     if (root["frames"]) c.max_frames = r.scalar<uint64_t>(root["frames"], "frames");
 
     const YAML::Node datasets = root["datasets"];
-    if (!datasets || !datasets.IsSequence() || datasets.size() == 0) r.fail(datasets ? datasets : root, "datasets: a non-empty list is required");
+    if (!datasets || !datasets.IsSequence() || datasets.size() == 0)
+        r.fail(datasets ? datasets : root, "datasets: a non-empty list is required");
     std::set<std::string> names;
     for (const YAML::Node& d : datasets) {
         c.datasets.push_back(read_dataset(r, d, registry, check_paths));

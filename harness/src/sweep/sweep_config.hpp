@@ -25,8 +25,8 @@ namespace vobench {
 
 // Sequences the generator renders (once, cached) instead of a folder on disk.
 struct SyntheticSpec {
-    std::vector<std::string> trajectories;        // families (explore1 …) or PUTK² marker files
-    std::vector<std::string> names;               // the sequence name of each (default: family or file stem)
+    std::vector<std::string> trajectories;  // families (explore1 …) or PUTK² marker files
+    std::vector<std::string> names;         // the sequence name of each (default: family or file stem)
     std::vector<std::string> sensors{"kinect1"};
     uint64_t frames = 50;
     uint64_t seed = 1;
@@ -42,7 +42,7 @@ struct DatasetSpec {
     std::vector<std::string> sensors;    // empty: the sensor the reader reports
     ParamMap options;                    // reader options
     GroundTruthAccuracy gt_accuracy;
-    std::string where;                   // file:line:col of the entry
+    std::string where;  // file:line:col of the entry
 
     // The folders on disk, one per (sequence, sensor), in that order: path with {sensor} filled in,
     // plus the sequence's sub-folder. Not for synthetic datasets.
@@ -54,10 +54,10 @@ struct DatasetSpec {
 };
 
 struct AlgorithmSpec {
-    std::string name;                    // label in tables (default: the plugin name)
-    std::string plugin;                  // name or path
-    std::vector<ParamMap> variants;      // one per point of the parameter sweep (at least one)
-    std::string load_error;              // the plugin exists but refused to load: its cells fail
+    std::string name;                // label in tables (default: the plugin name)
+    std::string plugin;              // name or path
+    std::vector<ParamMap> variants;  // one per point of the parameter sweep (at least one)
+    std::string load_error;          // the plugin exists but refused to load: its cells fail
     std::string where;
 };
 
@@ -74,7 +74,7 @@ struct SweepConfig {
     Limits limits;
     std::string backend = "local";
     std::vector<Criterion> criteria;
-    nlohmann::json source;           // the whole file as JSON, for the record
+    nlohmann::json source;  // the whole file as JSON, for the record
 };
 
 // Metric names a config may rank by or set criteria on (the catalogue's, metrics/metric_catalog.hpp).

@@ -27,18 +27,24 @@ public:
         add(mark, it == sizes_.end() ? 1 : it->second);
         child_done(mark, nullptr);
     }
-    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, const std::string& value) override { leaf(mark, anchor, &value); }
-    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override { open(mark, anchor, false); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, const std::string& value) override {
+        leaf(mark, anchor, &value);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+        open(mark, anchor, false);
+    }
     void OnSequenceEnd() override { close(); }
-    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override { open(mark, anchor, true); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor, YAML::EmitterStyle::value) override {
+        open(mark, anchor, true);
+    }
     void OnMapEnd() override { close(); }
 
 private:
     struct Frame {
         bool map = false;
         YAML::anchor_t anchor = 0;
-        uint64_t nodes = 1;          // this node and everything below it, aliases expanded
-        uint64_t children = 0;       // completed children (in a map: keys and values alternate)
+        uint64_t nodes = 1;     // this node and everything below it, aliases expanded
+        uint64_t children = 0;  // completed children (in a map: keys and values alternate)
         std::set<std::string> keys;
         YAML::Mark mark;
     };
@@ -99,8 +105,7 @@ YAML::Node YamlReader::load() const {
         std::istringstream events(text);
         YAML::Parser parser(events);
         StructureCheck check(*this, kMaxConfigNodes);
-        while (parser.HandleNextDocument(check)) {
-        }
+        while (parser.HandleNextDocument(check)) {}
         return YAML::Load(text);
     } catch (const YAML::DeepRecursion& e) {
         throw ConfigError(fmt::format("{}:{}:{}: nested too deeply: refused", file_, e.mark.line + 1, e.mark.column + 1));

@@ -34,9 +34,7 @@ public:
         const YAML::Mark m = at.Mark();
         return fmt::format("{}:{}:{}", file_, m.line + 1, m.column + 1);
     }
-    [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const {
-        throw ConfigError(where(at) + ": " + message);
-    }
+    [[noreturn]] void fail(const YAML::Node& at, const std::string& message) const { throw ConfigError(where(at) + ": " + message); }
     // Refuses any key outside `allowed`, listing the known ones.
     void only_keys(const YAML::Node& map, const std::set<std::string>& allowed, const std::string& what) const;
     // `node[key]` must exist.

@@ -4,9 +4,9 @@
 
 #include "depth_registration.hpp"  // plugins/common
 
+#include <tbb/parallel_for.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
-#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -92,17 +92,19 @@ std::vector<std::vector<int>> Renderer::cull(const RayMap& rays, const Eigen::Is
     return lists;
 }
 
-RenderedFrame Renderer::render(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose,
-                               double frame_interval_s, bool blur) const {
+RenderedFrame Renderer::render(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
+                               bool blur) const {
     RenderedFrame out;
     render_color(frame, pose, next_pose, frame_interval_s, blur, out);
-    if (sensor_.principle == DepthPrinciple::StructuredLight) render_depth_structured_light(frame, pose, out);
-    else render_depth_time_of_flight(frame, pose, out);
+    if (sensor_.principle == DepthPrinciple::StructuredLight)
+        render_depth_structured_light(frame, pose, out);
+    else
+        render_depth_time_of_flight(frame, pose, out);
     return out;
 }
 
-void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose,
-                            double frame_interval_s, bool blur, RenderedFrame& out) const {
+void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
+                            bool blur, RenderedFrame& out) const {
     const int W = color_rays_.width, H = color_rays_.height;
     const auto tiles = cull(color_rays_, pose);
     const int tiles_x = (W + kTile - 1) / kTile;
@@ -163,7 +165,8 @@ void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const
                 const int samples = std::clamp(static_cast<int>(std::ceil((pb - pa).norm())) + 1, 1, 24);
                 cv::Vec3f sum(0, 0, 0);
                 for (int k = 0; k < samples; ++k) {
-                    const Eigen::Vector2d p = samples == 1 ? Eigen::Vector2d(u, v) : pa + (pb - pa) * (static_cast<double>(k) / (samples - 1));
+                    const Eigen::Vector2d p =
+                        samples == 1 ? Eigen::Vector2d(u, v) : pa + (pb - pa) * (static_cast<double>(k) / (samples - 1));
                     const int x = std::clamp(static_cast<int>(p.x() + 0.5), 0, W - 1);
                     const int y = std::clamp(static_cast<int>(p.y() + 0.5), 0, H - 1);
                     sum += linear.at<cv::Vec3f>(y, x);
@@ -179,15 +182,16 @@ void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const
             const cv::Vec3f c = blurred.at<cv::Vec3f>(v, u);
             cv::Vec3b& px = out.color.at<cv::Vec3b>(v, u);
             for (int ch = 0; ch < 3; ++ch) {
-                const double noise = sensor_.color_noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch));
+                const double noise =
+                    sensor_.color_noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch));
                 px[ch] = cv::saturate_cast<uint8_t>(255.0 * srgb(c[ch]) + noise);
             }
         }
     });
 }
 
-bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles,
-                              int u, int v, DepthRay& out) const {
+bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u, int v,
+                              DepthRay& out) const {
     // Lateral noise: the sampling position jitters by a fraction of a pixel.
     const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
     const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
@@ -197,7 +201,8 @@ bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pos
     dir_cam.normalize();
     const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
     const int tiles_x = (depth_rays_.width + kTile - 1) / kTile;
-    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit, &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)]))
+    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit,
+                          &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)]))
         return false;
     out.z = out.hit.t * dir_cam.z();
     out.incidence = std::acos(std::min(1.0, std::abs(out.hit.normal.dot(dir))));
@@ -278,8 +283,8 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry
         }
     });
     // To the 1920×1080 colour camera, z-buffered splats (see plugins/common/depth_registration.hpp).
-    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color),
-                                     sensor_.depth_in_color, cv::Size(sensor_.color.width, sensor_.color.height));
+    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color), sensor_.depth_in_color,
+                                     cv::Size(sensor_.color.width, sensor_.color.height));
 }
 
 }  // namespace vobench::synth

@@ -28,8 +28,8 @@ public:
     // Renders the frame whose colour camera pose (camera-to-world) is `pose`. `velocity_pose` is the
     // camera pose one frame interval later (or earlier, negated by the caller); with `blur` the colour
     // image integrates the motion over the exposure time (`frame_interval_s` apart from it).
-    RenderedFrame render(uint64_t frame_index, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose,
-                         double frame_interval_s, bool blur) const;
+    RenderedFrame render(uint64_t frame_index, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
+                         bool blur) const;
 
     const SensorModel& sensor() const { return sensor_; }
 
@@ -42,16 +42,16 @@ private:
     // Candidate boxes per 16×16 tile for a camera pose (conservative frustum culling).
     std::vector<std::vector<int>> cull(const RayMap& rays, const Eigen::Isometry3d& pose) const;
 
-    void render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose,
-                      double frame_interval_s, bool blur, RenderedFrame& out) const;
+    void render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s, bool blur,
+                      RenderedFrame& out) const;
     struct DepthRay {
         Hit hit;
         double z = 0;          // depth along the depth camera's optical axis
         double incidence = 0;  // angle between ray and surface normal, rad
     };
     // One depth pixel's ray, with lateral jitter; false when it hits nothing.
-    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u,
-                        int v, DepthRay& out) const;
+    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u, int v,
+                        DepthRay& out) const;
     void render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
 

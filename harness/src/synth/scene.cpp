@@ -24,8 +24,14 @@ bool Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double
         for (int a = 0; a < 3; ++a) {
             double t0 = (box.min[a] - o[a]) * inv[a], t1 = (box.max[a] - o[a]) * inv[a];
             if (t0 > t1) std::swap(t0, t1);
-            if (t0 > t_enter) { t_enter = t0; enter_axis = a; }
-            if (t1 < t_exit) { t_exit = t1; exit_axis = a; }
+            if (t0 > t_enter) {
+                t_enter = t0;
+                enter_axis = a;
+            }
+            if (t1 < t_exit) {
+                t_exit = t1;
+                exit_axis = a;
+            }
         }
         if (t_enter > t_exit) continue;
         const double t = box.shell ? t_exit : t_enter;
@@ -126,7 +132,8 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
     uint64_t next_seed = o.seed * 1000003;
     for (int face = 0; face < 4; ++face)
         s.materials.push_back(material(r, TextureStyle::Paint, colour(r, 0.55f, 0.85f), colour(r, 0.3f, 0.5f), ++next_seed));
-    s.materials.push_back(material(r, TextureStyle::Tiles, Eigen::Vector3f(0.85f, 0.85f, 0.82f), Eigen::Vector3f(0.35f, 0.35f, 0.35f), ++next_seed));
+    s.materials.push_back(
+        material(r, TextureStyle::Tiles, Eigen::Vector3f(0.85f, 0.85f, 0.82f), Eigen::Vector3f(0.35f, 0.35f, 0.35f), ++next_seed));
     s.materials.push_back(r.uniform(0, 1) < 0.5
                               ? material(r, TextureStyle::Tiles, colour(r, 0.35f, 0.6f), Eigen::Vector3f(0.15f, 0.15f, 0.15f), ++next_seed)
                               : material(r, TextureStyle::Carpet, colour(r, 0.2f, 0.45f), colour(r, 0.4f, 0.6f), ++next_seed));
@@ -172,12 +179,36 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         const int kind = r.pick(6);  // desk, shelf, cabinet, box stack, pillar, box
         double w, d, h;
         switch (kind) {
-        case 0: w = r.uniform(1.2, 1.6); d = r.uniform(0.6, 0.8); h = r.uniform(0.72, 0.78); break;
-        case 1: w = r.uniform(0.8, 1.2); d = r.uniform(0.3, 0.45); h = r.uniform(1.6, 2.2); break;
-        case 2: w = r.uniform(0.4, 0.9); d = r.uniform(0.4, 0.6); h = r.uniform(0.6, 1.3); break;
-        case 3: w = r.uniform(0.4, 0.7); d = r.uniform(0.4, 0.7); h = r.uniform(0.5, 1.1); break;
-        case 4: w = r.uniform(0.3, 0.5); d = w; h = floor; break;
-        default: w = r.uniform(0.25, 0.6); d = r.uniform(0.25, 0.6); h = r.uniform(0.2, 0.6); break;
+            case 0:
+                w = r.uniform(1.2, 1.6);
+                d = r.uniform(0.6, 0.8);
+                h = r.uniform(0.72, 0.78);
+                break;
+            case 1:
+                w = r.uniform(0.8, 1.2);
+                d = r.uniform(0.3, 0.45);
+                h = r.uniform(1.6, 2.2);
+                break;
+            case 2:
+                w = r.uniform(0.4, 0.9);
+                d = r.uniform(0.4, 0.6);
+                h = r.uniform(0.6, 1.3);
+                break;
+            case 3:
+                w = r.uniform(0.4, 0.7);
+                d = r.uniform(0.4, 0.7);
+                h = r.uniform(0.5, 1.1);
+                break;
+            case 4:
+                w = r.uniform(0.3, 0.5);
+                d = w;
+                h = floor;
+                break;
+            default:
+                w = r.uniform(0.25, 0.6);
+                d = r.uniform(0.25, 0.6);
+                h = r.uniform(0.2, 0.6);
+                break;
         }
         // Against a wall (most furniture) or free-standing.
         double cx, cy;
@@ -200,7 +231,8 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
                        b.min.z() < o2.max.z() && b.max.z() > o2.min.z();
         }
         if (overlaps) continue;
-        TextureStyle style = kind == 0 || kind == 1 ? TextureStyle::Wood : kind == 4 ? TextureStyle::Tiles
+        TextureStyle style = kind == 0 || kind == 1 ? TextureStyle::Wood
+                             : kind == 4            ? TextureStyle::Tiles
                              : kind == 2            ? TextureStyle::Tiles
                                                     : TextureStyle::Carpet;
         add(b.min, b.max, material(r, style, colour(r, 0.4f, 0.75f), colour(r, 0.2f, 0.45f), ++next_seed));
@@ -243,7 +275,8 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
             for (double lateral : {0.0, 0.8, -0.8, 1.4, -1.4}) {
                 const Eigen::Vector3d c = at + forward * distance + side * lateral;
                 const double w = r.uniform(0.6, 1.0), d = r.uniform(0.4, 0.6), h = r.uniform(1.0, 1.9);
-                Box b{Eigen::Vector3d(c.x() - w / 2, c.y() - d / 2, floor - h), Eigen::Vector3d(c.x() + w / 2, c.y() + d / 2, floor), 0, false};
+                Box b{Eigen::Vector3d(c.x() - w / 2, c.y() - d / 2, floor - h), Eigen::Vector3d(c.x() + w / 2, c.y() + d / 2, floor), 0,
+                      false};
                 if (b.min.x() < x0 || b.max.x() > x1 || b.min.y() < y0 || b.max.y() > y1 || !clear_of_path(b)) continue;
                 const TextureStyle style = r.uniform(0, 1) < 0.5 ? TextureStyle::Poster : TextureStyle::Tiles;
                 add(b.min, b.max, material(r, style, colour(r, 0.45f, 0.8f), colour(r, 0.15f, 0.4f), ++next_seed));

@@ -19,16 +19,16 @@ namespace vobench::synth {
 
 struct Box {
     Eigen::Vector3d min, max;
-    int material = 0;     // index into Scene::materials; for the room shell, + face (0..5)
-    bool shell = false;   // the room itself: seen from inside
+    int material = 0;    // index into Scene::materials; for the room shell, + face (0..5)
+    bool shell = false;  // the room itself: seen from inside
 };
 
 struct Hit {
-    double t = 0;              // distance along the (unit) ray
+    double t = 0;  // distance along the (unit) ray
     Eigen::Vector3d point;
-    Eigen::Vector3d normal;    // facing the ray origin
+    Eigen::Vector3d normal;  // facing the ray origin
     int material = -1;
-    double u = 0, v = 0;       // surface coordinates, metres
+    double u = 0, v = 0;  // surface coordinates, metres
 };
 
 struct PointLight {
@@ -54,9 +54,9 @@ struct Scene {
 
 struct OfficeOptions {
     uint64_t seed = 1;
-    double floor_z = 3.0;     // ceiling cameras 3 m above the floor
-    double clearance = 0.7;   // free radius around the path, metres
-    double margin = 1.1;      // mean distance from the path's bounding box to the walls, metres
+    double floor_z = 3.0;    // ceiling cameras 3 m above the floor
+    double clearance = 0.7;  // free radius around the path, metres
+    double margin = 1.1;     // mean distance from the path's bounding box to the walls, metres
 };
 
 // `camera_poses`: the camera-to-world poses the sensors will take. After walls and furniture, every

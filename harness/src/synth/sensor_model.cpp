@@ -22,7 +22,8 @@ SensorModel kinect1() {
     // PUT calibration of the Kinect v1 colour camera, camData.txt id 00022000 (640×480; ≈62°×48.6°).
     s.color = {640, 480, 532.77250, 531.85745, 312.23007, 260.11708, 4, {0.16054, -0.24682, 0.00136, 0.00149, 0, 0, 0, 0}};
     // Depth: 320×240 registered to the colour camera (half the colour resolution, same lens
-    // distortion: pixel for pixel on the colour image), later upsampled to 640×480 as in the paper. Nominal depth FOV ≈58.5°×46.6° lies inside the colour FOV.
+    // distortion: pixel for pixel on the colour image), later upsampled to 640×480 as in the paper. Nominal depth FOV ≈58.5°×46.6° lies
+    // inside the colour FOV.
     s.depth = {320, 240, 532.77250 / 2, 531.85745 / 2, 312.23007 / 2, 260.11708 / 2, s.color.distortion_count, s.color.distortion};
     s.depth_in_color = Eigen::Isometry3d::Identity();  // registered by the sensor
     // cameraZnacznikKin1.txt: x y z qw qx qy qz.
@@ -38,9 +39,15 @@ SensorModel kinect2() {
     s.name = "kinect2";
     s.principle = DepthPrinciple::TimeOfFlight;
     // PUT calibration of the Kinect v2 colour camera, camData.txt id 00033000 (1920×1080; ≈84°×54°).
-    s.color = {1920, 1080, 1078.68499, 1076.474256, 952.6592286, 530.7386644, 8,
-               {0.02712800285, -0.003876435388, -0.0003782667962, -0.002409935964, 0.05862808573, -0.02856023826,
-                0.05860957117, 0.03897302154}};
+    s.color = {
+        1920,
+        1080,
+        1078.68499,
+        1076.474256,
+        952.6592286,
+        530.7386644,
+        8,
+        {0.02712800285, -0.003876435388, -0.0003782667962, -0.002409935964, 0.05862808573, -0.02856023826, 0.05860957117, 0.03897302154}};
     // Depth: 512×424 with ≈70°×60° FOV (fx = fy ≈ 365.5 px); the depth camera sits ≈5.2 cm beside the
     // colour camera (Kinect v2 hardware; Fankhauser et al. 2015).
     s.depth = {512, 424, 365.5, 365.5, 255.5, 211.5, 0, {}};

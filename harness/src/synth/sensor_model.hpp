@@ -28,11 +28,11 @@ struct SensorModel {
     Eigen::Isometry3d depth_in_color;    // pose of the depth camera in the colour camera frame
     Eigen::Isometry3d camera_in_marker;  // colour camera in the robot marker frame (eq. 10)
     double min_range_m = 0.5, max_range_m = 4.5;
-    double glancing_limit_deg = 80.0;    // beyond this incidence angle no return
-    double lateral_sigma_px = 0.3;       // jitter of the depth sampling position
+    double glancing_limit_deg = 80.0;  // beyond this incidence angle no return
+    double lateral_sigma_px = 0.3;     // jitter of the depth sampling position
     // Structured light (Khoshelham & Elberink 2012): z = f·b / d, disparity d quantised to 1/8 px.
-    double ir_focal_px = 580.0;          // at the 640×480 IR resolution
-    double baseline_m = 0.075;           // projector–IR camera
+    double ir_focal_px = 580.0;  // at the 640×480 IR resolution
+    double baseline_m = 0.075;   // projector–IR camera
     double disparity_step_px = 0.125;
     double disparity_sigma_px = 0.0505;  // with the quantisation: σ_z ≈ 1.425e-3·z² m (their eq. 16 fit)
     Eigen::Vector3d projector_in_color{-0.05, 0.0, 0.0};
@@ -42,7 +42,7 @@ struct SensorModel {
     double dropout_probability = 0.003;     // isolated invalid pixels
     // Colour camera exposure and noise.
     double exposure_s = 0.015;
-    double color_noise_dn = 2.0;         // σ of additive noise, 8-bit digital numbers
+    double color_noise_dn = 2.0;  // σ of additive noise, 8-bit digital numbers
     double gain = 1.0;
 };
 

@@ -41,8 +41,10 @@ Paths load_paths(const SynthOptions& o, const SensorModel& sensor) {
             throw std::invalid_argument("--trajectory: '" + o.trajectory + "' is neither a built-in trajectory (" +
                                         fmt::format("{}", fmt::join(trajectory_family_names(), ", ")) + ") nor a file");
         const auto read = metrics::read_trajectory(o.trajectory, ro);
-        if (ro.format == metrics::TrajectoryFormat::Putk2Raw) p.marker = read.poses;
-        else p.camera = read.poses;
+        if (ro.format == metrics::TrajectoryFormat::Putk2Raw)
+            p.marker = read.poses;
+        else
+            p.camera = read.poses;
     }
     if (!p.marker.empty()) {
         // Kraft et al. 2016, eq. 10: the camera's pose is the marker's pose times camera-in-marker.
@@ -107,15 +109,15 @@ std::string pose_line(const Eigen::Isometry3d& T) {  // x y z qw qx qy qz (w fir
 void write_tum_calibration(const SynthOptions& o, const SensorModel& sensor, const Paths& paths, uint64_t count) {
     const PinholeCamera& c = sensor.color;
     write_file_atomic(o.out / "camera.txt",
-                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
-                                           "{} {} {} {} {}\n",
-                                           c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
+                      fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6 (colour camera, OpenCV rational model)\n"
+                                  "{} {} {} {} {}\n",
+                                  c.fx, c.fy, c.cx, c.cy, fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
     if (paths.marker.empty()) return;
     std::string raw;
     for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
     write_file_atomic(o.out / "marker_groundtruth.txt", raw);
     write_file_atomic(o.out / "camera_in_marker.txt",
-                               "# camera pose in the marker frame: x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
+                      "# camera pose in the marker frame: x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
 }
 
 // camera.txt in ICL-NUIM's sign convention (its images are stored upside down: fy < 0, cy from the
@@ -125,16 +127,17 @@ void write_icl_calibration(const SynthOptions& o, const SensorModel& sensor) {
     std::vector<double> d(c.distortion.begin(), c.distortion.begin() + c.distortion_count);
     if (d.size() > 2) d[2] = -d[2];
     write_file_atomic(o.out / "camera.txt",
-                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6, ICL-NUIM convention (fy < 0: images stored upside down)\n"
-                                           "{} {} {} {} {}\n",
-                                           c.fx, -c.fy, c.cx, (c.height - 1) - c.cy, fmt::join(d, " ")));
+                      fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6, ICL-NUIM convention (fy < 0: images stored upside down)\n"
+                                  "{} {} {} {} {}\n",
+                                  c.fx, -c.fy, c.cx, (c.height - 1) - c.cy, fmt::join(d, " ")));
 }
 
 // ICL-NUIM's POV-Ray layout, frame k: scene_00_kkkk.png (colour as rendered), scene_00_kkkk.depth (text,
 // row by row: the distance along each pixel's ray from the camera centre, metres — not z), and
 // scene_00_kkkk.txt (POV-Ray camera vectors `name = [x, y, z]';`: cam_pos; cam_dir, the optical axis;
 // cam_up, towards the top of the image). The ray of a pixel is its undistorted direction.
-void write_povray_frame(const fs::path& out, uint64_t k, const Eigen::Isometry3d& pose, const RenderedFrame& frame, const PinholeCamera& c) {
+void write_povray_frame(const fs::path& out, uint64_t k, const Eigen::Isometry3d& pose, const RenderedFrame& frame,
+                        const PinholeCamera& c) {
     const std::string base = fmt::format("scene_00_{:04d}", k);
     write_png(out / (base + ".png"), frame.color);
     std::vector<cv::Point2f> pixels, rays;
@@ -158,17 +161,15 @@ void write_povray_frame(const fs::path& out, uint64_t k, const Eigen::Isometry3d
 
 std::string sim_rows(const Eigen::Isometry3d& T) {
     std::string rows;
-    for (int r = 0; r < 3; ++r)
-        rows += fmt::format("{} {} {} {}\n", T(r, 0), T(r, 1), T(r, 2), T(r, 3));
+    for (int r = 0; r < 3; ++r) rows += fmt::format("{} {} {} {}\n", T(r, 0), T(r, 1), T(r, 2), T(r, 3));
     return rows;
 }
 
 // camera.txt for the POV-Ray layout: the images are stored as rendered (fy > 0).
 void write_povray_calibration(const SynthOptions& o, const SensorModel& sensor) {
     const PinholeCamera& c = sensor.color;
-    write_file_atomic(o.out / "camera.txt",
-                               fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n{} {} {} {} {}\n", c.fx, c.fy, c.cx, c.cy,
-                                           fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
+    write_file_atomic(o.out / "camera.txt", fmt::format("# fx fy cx cy k1 k2 p1 p2 k3 k4 k5 k6\n{} {} {} {} {}\n", c.fx, c.fy, c.cx, c.cy,
+                                                        fmt::join(c.distortion.begin(), c.distortion.begin() + c.distortion_count, " ")));
 }
 
 // PUTK²'s own files: camData.txt (colour intrinsics under PUT's camera id), cameraZnacznik.txt
@@ -178,10 +179,9 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
     const PinholeCamera& c = sensor.color;
     const std::string id = sensor.name == "kinect1" ? "00022000" : "00033000";
     std::vector<double> d(c.distortion.begin(), c.distortion.end());
-    write_file_atomic(o.out / "camData.txt",
-                               fmt::format("{}, {}, {}, {}, {}, {}\n", id, c.fx, c.fy, c.cx, c.cy, fmt::join(d, ", ")));
+    write_file_atomic(o.out / "camData.txt", fmt::format("{}, {}, {}, {}, {}, {}\n", id, c.fx, c.fy, c.cx, c.cy, fmt::join(d, ", ")));
     write_file_atomic(o.out / "cameraZnacznik.txt",
-                               "# camera pose in the marker frame\n# x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
+                      "# camera pose in the marker frame\n# x y z qw qx qy qz\n" + pose_line(paths.camera_in_marker) + "\n");
     if (!paths.marker.empty()) {
         std::string raw;
         for (uint64_t k = 0; k < count; ++k) raw += rodrigues_line(paths.marker[k]) + "\n";
@@ -190,9 +190,9 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
     if (sensor.principle == DepthPrinciple::TimeOfFlight) {
         const PinholeCamera& dc = sensor.depth;
         write_file_atomic(o.out / "depth_camera.txt",
-                                   fmt::format("# depth camera: fx fy cx cy, then its pose in the colour camera frame: x y z qw qx qy qz\n"
-                                               "{} {} {} {}\n{}\n",
-                                               dc.fx, dc.fy, dc.cx, dc.cy, pose_line(sensor.depth_in_color)));
+                          fmt::format("# depth camera: fx fy cx cy, then its pose in the colour camera frame: x y z qw qx qy qz\n"
+                                      "{} {} {} {}\n{}\n",
+                                      dc.fx, dc.fy, dc.cx, dc.cy, pose_line(sensor.depth_in_color)));
     }
 }
 
@@ -277,10 +277,14 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                            putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
                                         : "vobench synth: camera poses (camera-to-world)");
     }
-    if (putk2) write_putk2_calibration(o, sensor, paths, count);
-    else if (icl) write_icl_calibration(o, sensor);
-    else if (povray) write_povray_calibration(o, sensor);
-    else write_tum_calibration(o, sensor, paths, count);
+    if (putk2)
+        write_putk2_calibration(o, sensor, paths, count);
+    else if (icl)
+        write_icl_calibration(o, sensor);
+    else if (povray)
+        write_povray_calibration(o, sensor);
+    else
+        write_tum_calibration(o, sensor, paths, count);
     const nlohmann::json meta{{"generator", "vobench synth"},
                               {"generator_version", kGeneratorVersion},
                               {"vobench_version", VOBENCH_VERSION},

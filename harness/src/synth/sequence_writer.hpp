@@ -28,10 +28,10 @@ constexpr int kGeneratorVersion = 1;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
-    std::string trajectory = "explore1";  // a family name, or a file
+    std::string trajectory = "explore1";          // a family name, or a file
     std::string trajectory_format = "putk2-raw";  // for a file: putk2-raw (marker) or tum (camera poses)
-    std::string camera_in_marker;         // putk2-raw file: override the sensor's camera-in-marker pose
-    uint64_t frames = 0;                  // 0: the whole trajectory
+    std::string camera_in_marker;                 // putk2-raw file: override the sensor's camera-in-marker pose
+    uint64_t frames = 0;                          // 0: the whole trajectory
     uint64_t seed = 1;
     std::string layout = "tum";
     bool blur = true;

@@ -22,7 +22,9 @@ double value_noise(double x, double y, uint64_t seed) {
     const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
     // One mixing round per lattice corner (large odd multipliers keep neighbouring corners apart).
     auto corner = [&](int64_t a, int64_t b) {
-        return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^ (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) - 1.0;
+        return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^
+                                   (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) -
+               1.0;
     };
     const double tx = smooth(x - fx), ty = smooth(y - fy);
     const double top = corner(ix, iy) + tx * (corner(ix + 1, iy) - corner(ix, iy));
@@ -74,13 +76,14 @@ Eigen::Vector3f poster(const Material& m, double u, double v, double footprint) 
     const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
     const uint64_t h = hash(m.seed, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
     const double lu = u / cell - static_cast<double>(cu) - 0.5, lv = v / cell - static_cast<double>(cv) - 0.5;
-    const Eigen::Vector3f colour(static_cast<float>(uniform(h)), static_cast<float>(uniform(mix64(h))), static_cast<float>(uniform(mix64(h + 1))));
+    const Eigen::Vector3f colour(static_cast<float>(uniform(h)), static_cast<float>(uniform(mix64(h))),
+                                 static_cast<float>(uniform(mix64(h + 1))));
     const float vis = visibility(cell * 0.5, footprint);
     bool inside;
     switch (h % 3) {
-    case 0: inside = lu * lu + lv * lv < 0.12; break;
-    case 1: inside = std::abs(lu) < 0.4 && std::abs(lv) < 0.15; break;
-    default: inside = std::abs(lu) < 0.2 && std::abs(lv) < 0.35; break;
+        case 0: inside = lu * lu + lv * lv < 0.12; break;
+        case 1: inside = std::abs(lu) < 0.4 && std::abs(lv) < 0.15; break;
+        default: inside = std::abs(lu) < 0.2 && std::abs(lv) < 0.35; break;
     }
     const Eigen::Vector3f ground = m.base;
     const Eigen::Vector3f mean = 0.75f * ground + 0.25f * colour;
@@ -109,35 +112,35 @@ Eigen::Vector3f marks(const Material& m, double u, double v, double footprint, c
 
 Eigen::Vector3f albedo(const Material& m, double u, double v, double footprint) {
     switch (m.style) {
-    case TextureStyle::Paint: {
-        // Mottled paint with labels, switches, scuffs and screw heads: real walls and furniture carry
-        // small high-contrast marks, which is where FAST finds its corners.
-        const double n = fbm(u, v, 0.6 * m.scale, 7, footprint, m.seed);
-        const Eigen::Vector3f paint = m.base * static_cast<float>(1.0 + 0.6 * n);
-        return marks(m, u, v, footprint, paint);
-    }
-    case TextureStyle::Tiles: {
-        const double n = fbm(u, v, 0.3 * m.scale, 5, footprint, m.seed);
-        const float line = std::max(grid_line(u, 0.5 * m.scale, 0.012, footprint), grid_line(v, 0.5 * m.scale, 0.012, footprint));
-        // Each tile its own shade: corners where four tiles meet.
-        const uint64_t tile = hash(m.seed, static_cast<uint64_t>(std::floor(u / (0.5 * m.scale)) + 1e5),
-                                   static_cast<uint64_t>(std::floor(v / (0.5 * m.scale)) + 1e5));
-        const float shade = 0.85f + 0.3f * static_cast<float>(uniform(tile));
-        return mix(m.base * shade * static_cast<float>(1.0 + 0.25 * n), m.accent, line);
-    }
-    case TextureStyle::Wood: {
-        const double n = fbm(u * 0.15, v, 0.08 * m.scale, 5, footprint, m.seed);
-        const double grain = 0.5 + 0.5 * std::sin((v + 0.05 * n) / (0.012 * m.scale));
-        const float vis = visibility(0.012 * m.scale, footprint);
-        const float plank = grid_line(v, 0.15 * m.scale, 0.004, footprint);
-        return mix(mix(m.base, m.accent, static_cast<float>(0.35 * grain * vis + 0.175 * (1 - vis))), m.accent * 0.5f, plank);
-    }
-    case TextureStyle::Pages: return pages(m, u, v, footprint);
-    case TextureStyle::Poster: return poster(m, u, v, footprint);
-    case TextureStyle::Carpet: {
-        const double n = fbm(u, v, 0.05 * m.scale, 4, footprint, m.seed) + 0.5 * fbm(u, v, 0.8, 3, footprint, m.seed + 7);
-        return mix(m.base, m.accent, static_cast<float>(std::clamp(0.5 + 0.8 * n, 0.0, 1.0)));
-    }
+        case TextureStyle::Paint: {
+            // Mottled paint with labels, switches, scuffs and screw heads: real walls and furniture carry
+            // small high-contrast marks, which is where FAST finds its corners.
+            const double n = fbm(u, v, 0.6 * m.scale, 7, footprint, m.seed);
+            const Eigen::Vector3f paint = m.base * static_cast<float>(1.0 + 0.6 * n);
+            return marks(m, u, v, footprint, paint);
+        }
+        case TextureStyle::Tiles: {
+            const double n = fbm(u, v, 0.3 * m.scale, 5, footprint, m.seed);
+            const float line = std::max(grid_line(u, 0.5 * m.scale, 0.012, footprint), grid_line(v, 0.5 * m.scale, 0.012, footprint));
+            // Each tile its own shade: corners where four tiles meet.
+            const uint64_t tile = hash(m.seed, static_cast<uint64_t>(std::floor(u / (0.5 * m.scale)) + 1e5),
+                                       static_cast<uint64_t>(std::floor(v / (0.5 * m.scale)) + 1e5));
+            const float shade = 0.85f + 0.3f * static_cast<float>(uniform(tile));
+            return mix(m.base * shade * static_cast<float>(1.0 + 0.25 * n), m.accent, line);
+        }
+        case TextureStyle::Wood: {
+            const double n = fbm(u * 0.15, v, 0.08 * m.scale, 5, footprint, m.seed);
+            const double grain = 0.5 + 0.5 * std::sin((v + 0.05 * n) / (0.012 * m.scale));
+            const float vis = visibility(0.012 * m.scale, footprint);
+            const float plank = grid_line(v, 0.15 * m.scale, 0.004, footprint);
+            return mix(mix(m.base, m.accent, static_cast<float>(0.35 * grain * vis + 0.175 * (1 - vis))), m.accent * 0.5f, plank);
+        }
+        case TextureStyle::Pages: return pages(m, u, v, footprint);
+        case TextureStyle::Poster: return poster(m, u, v, footprint);
+        case TextureStyle::Carpet: {
+            const double n = fbm(u, v, 0.05 * m.scale, 4, footprint, m.seed) + 0.5 * fbm(u, v, 0.8, 3, footprint, m.seed + 7);
+            return mix(m.base, m.accent, static_cast<float>(std::clamp(0.5 + 0.8 * n, 0.0, 1.0)));
+        }
     }
     return m.base;
 }

@@ -17,9 +17,9 @@ enum class TextureStyle { Paint, Tiles, Wood, Pages, Poster, Carpet };
 
 struct Material {
     TextureStyle style = TextureStyle::Paint;
-    Eigen::Vector3f base{0.7f, 0.7f, 0.7f};    // linear RGB albedo in [0, 1]
+    Eigen::Vector3f base{0.7f, 0.7f, 0.7f};  // linear RGB albedo in [0, 1]
     Eigen::Vector3f accent{0.2f, 0.2f, 0.2f};
-    float scale = 1.0f;                         // metres per pattern unit
+    float scale = 1.0f;  // metres per pattern unit
     uint64_t seed = 0;
 };
 

@@ -27,9 +27,9 @@ public:
     void run(const std::vector<Step>& steps) {
         for (const Step& s : steps) {
             switch (s.kind) {
-            case Step::Straight: straight(s.amount, s.speed); break;
-            case Step::Turn: turn(s.amount, s.speed); break;
-            case Step::Arc: arc(s.amount, s.speed, s.radius); break;
+                case Step::Straight: straight(s.amount, s.speed); break;
+                case Step::Turn: turn(s.amount, s.speed); break;
+                case Step::Arc: arc(s.amount, s.speed, s.radius); break;
             }
         }
     }
@@ -81,25 +81,25 @@ private:
 std::vector<Step> family_steps(const std::string& name) {
     using S = Step;
     const double v = 0.13, w = 30 * kDeg;  // PUTK² exploration: ≈0.12–0.16 m/s; sudden turns
-    if (name == "explore1")  // a loop around a rectangle and back: 18.6 m
-        return {{S::Straight, 4.0, v, 0}, {S::Turn, 90 * kDeg, w, 0}, {S::Straight, 2.2, v, 0}, {S::Turn, 90 * kDeg, w, 0},
-                {S::Straight, 4.0, v, 0}, {S::Turn, 90 * kDeg, w, 0}, {S::Straight, 2.2, v, 0}, {S::Turn, 90 * kDeg, w, 0},
-                {S::Straight, 3.0, v, 0}, {S::Straight, -1.5, v, 0}, {S::Turn, -120 * kDeg, w, 0}, {S::Straight, 1.7, v, 0}};
+    if (name == "explore1")                // a loop around a rectangle and back: 18.6 m
+        return {{S::Straight, 4.0, v, 0}, {S::Turn, 90 * kDeg, w, 0}, {S::Straight, 2.2, v, 0},     {S::Turn, 90 * kDeg, w, 0},
+                {S::Straight, 4.0, v, 0}, {S::Turn, 90 * kDeg, w, 0}, {S::Straight, 2.2, v, 0},     {S::Turn, 90 * kDeg, w, 0},
+                {S::Straight, 3.0, v, 0}, {S::Straight, -1.5, v, 0},  {S::Turn, -120 * kDeg, w, 0}, {S::Straight, 1.7, v, 0}};
     if (name == "explore2")  // a figure of eight with long straights: 27 m
-        return {{S::Straight, 3.5, v, 0}, {S::Arc, 180 * kDeg, v, 1.0}, {S::Straight, 3.5, v, 0}, {S::Arc, -180 * kDeg, v, 1.0},
-                {S::Straight, 3.5, v, 0}, {S::Arc, 180 * kDeg, v, 1.0}, {S::Straight, 2.0, v, 0}, {S::Turn, 90 * kDeg, w, 0},
-                {S::Straight, 1.5, v, 0}};
+        return {{S::Straight, 3.5, v, 0},      {S::Arc, 180 * kDeg, v, 1.0}, {S::Straight, 3.5, v, 0},
+                {S::Arc, -180 * kDeg, v, 1.0}, {S::Straight, 3.5, v, 0},     {S::Arc, 180 * kDeg, v, 1.0},
+                {S::Straight, 2.0, v, 0},      {S::Turn, 90 * kDeg, w, 0},   {S::Straight, 1.5, v, 0}};
     if (name == "explore3")  // back and forth with reversing and sudden turns: 31 m
-        return {{S::Straight, 5.0, 0.15, 0}, {S::Straight, -2.0, 0.12, 0}, {S::Turn, 90 * kDeg, 40 * kDeg, 0},
-                {S::Straight, 2.0, 0.15, 0}, {S::Turn, 90 * kDeg, 40 * kDeg, 0}, {S::Straight, 5.0, 0.15, 0},
-                {S::Straight, -1.5, 0.12, 0}, {S::Turn, -90 * kDeg, 40 * kDeg, 0}, {S::Straight, 2.5, 0.15, 0},
-                {S::Turn, -90 * kDeg, 40 * kDeg, 0}, {S::Straight, 5.0, 0.15, 0}, {S::Turn, 180 * kDeg, 40 * kDeg, 0},
+        return {{S::Straight, 5.0, 0.15, 0},         {S::Straight, -2.0, 0.12, 0},        {S::Turn, 90 * kDeg, 40 * kDeg, 0},
+                {S::Straight, 2.0, 0.15, 0},         {S::Turn, 90 * kDeg, 40 * kDeg, 0},  {S::Straight, 5.0, 0.15, 0},
+                {S::Straight, -1.5, 0.12, 0},        {S::Turn, -90 * kDeg, 40 * kDeg, 0}, {S::Straight, 2.5, 0.15, 0},
+                {S::Turn, -90 * kDeg, 40 * kDeg, 0}, {S::Straight, 5.0, 0.15, 0},         {S::Turn, 180 * kDeg, 40 * kDeg, 0},
                 {S::Straight, 6.0, 0.15, 0}};
     if (name == "explore4")  // zig-zag and two loops, the longest: 38 m
-        return {{S::Straight, 3.0, v, 0}, {S::Turn, 45 * kDeg, w, 0}, {S::Straight, 2.5, v, 0}, {S::Turn, -90 * kDeg, w, 0},
-                {S::Straight, 2.5, v, 0}, {S::Turn, 45 * kDeg, w, 0}, {S::Straight, 3.0, v, 0}, {S::Arc, 360 * kDeg, v, 1.2},
+        return {{S::Straight, 3.0, v, 0},  {S::Turn, 45 * kDeg, w, 0},  {S::Straight, 2.5, v, 0}, {S::Turn, -90 * kDeg, w, 0},
+                {S::Straight, 2.5, v, 0},  {S::Turn, 45 * kDeg, w, 0},  {S::Straight, 3.0, v, 0}, {S::Arc, 360 * kDeg, v, 1.2},
                 {S::Straight, -2.0, v, 0}, {S::Turn, 180 * kDeg, w, 0}, {S::Straight, 6.0, v, 0}, {S::Arc, -360 * kDeg, v, 1.0},
-                {S::Straight, 4.0, v, 0}, {S::Turn, -90 * kDeg, w, 0}, {S::Straight, 2.0, v, 0}};
+                {S::Straight, 4.0, v, 0},  {S::Turn, -90 * kDeg, w, 0}, {S::Straight, 2.0, v, 0}};
     // One path, four speeds (PUTK² sequences 5–8): straight, a quarter arc, straight; 6.3 m.
     const double speeds[4] = {0.16, 0.38, 0.75, 1.04};
     for (int k = 0; k < 4; ++k)

@@ -22,10 +22,17 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i, uint32_t& cp) {
         cp = c;
         return 1;
     }
-    if (c >= 0xC2 && c <= 0xDF) { n = 2; cp = c & 0x1F; }
-    else if (c >= 0xE0 && c <= 0xEF) { n = 3; cp = c & 0x0F; }
-    else if (c >= 0xF0 && c <= 0xF4) { n = 4; cp = c & 0x07; }
-    else return 0;
+    if (c >= 0xC2 && c <= 0xDF) {
+        n = 2;
+        cp = c & 0x1F;
+    } else if (c >= 0xE0 && c <= 0xEF) {
+        n = 3;
+        cp = c & 0x0F;
+    } else if (c >= 0xF0 && c <= 0xF4) {
+        n = 4;
+        cp = c & 0x07;
+    } else
+        return 0;
     if (i + n > s.size()) return 0;
     for (std::size_t k = 1; k < n; ++k) {
         if ((b(k) & 0xC0) != 0x80) return 0;
@@ -35,7 +42,9 @@ std::size_t utf8_sequence(std::string_view s, std::size_t i, uint32_t& cp) {
     return n;
 }
 
-bool is_bidi_control(uint32_t cp) { return (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069) || cp == 0x200E || cp == 0x200F; }
+bool is_bidi_control(uint32_t cp) {
+    return (cp >= 0x202A && cp <= 0x202E) || (cp >= 0x2066 && cp <= 0x2069) || cp == 0x200E || cp == 0x200F;
+}
 
 // clean_text, then each ASCII character through `ascii` (which appends its escaped form).
 template <typename Ascii>
@@ -44,8 +53,10 @@ std::string map_clean(std::string_view text, Ascii ascii) {
     std::string out;
     out.reserve(clean.size() + 8);
     for (char c : clean) {
-        if (static_cast<unsigned char>(c) >= 0x80) out += c;
-        else ascii(out, c);
+        if (static_cast<unsigned char>(c) >= 0x80)
+            out += c;
+        else
+            ascii(out, c);
     }
     return out;
 }
@@ -77,7 +88,8 @@ std::string clean_text(std::string_view text, bool keep_newlines) {
 std::string gnuplot_quoted(std::string_view text) {
     // gnuplot's '' escape is not reliable (four quotes in a row break its scanner), so a title's
     // apostrophe is shown as U+2019 and the literal holds no quote at all.
-    return "'" + map_clean(text, [](std::string& out, char c) { out += c == '\'' ? std::string("\xE2\x80\x99") : std::string(1, c); }) + "'";
+    return "'" + map_clean(text, [](std::string& out, char c) { out += c == '\'' ? std::string("\xE2\x80\x99") : std::string(1, c); }) +
+           "'";
 }
 
 std::string markdown_text(std::string_view text) {
@@ -99,15 +111,24 @@ std::string markdown_text(std::string_view text) {
 std::string latex_text(std::string_view text) {
     return map_clean(text, [](std::string& out, char c) {
         switch (c) {
-        case '\\': out += "\\textbackslash{}"; break;
-        case '~': out += "\\textasciitilde{}"; break;
-        case '^': out += "\\textasciicircum{}"; break;
-        case '<': out += "\\textless{}"; break;
-        case '>': out += "\\textgreater{}"; break;
-        case '|': out += "\\textbar{}"; break;
-        case '"': out += "\\textquotedbl{}"; break;
-        case '_': case '&': case '%': case '#': case '$': case '{': case '}': out += '\\'; out += c; break;
-        default: out += c;
+            case '\\': out += "\\textbackslash{}"; break;
+            case '~': out += "\\textasciitilde{}"; break;
+            case '^': out += "\\textasciicircum{}"; break;
+            case '<': out += "\\textless{}"; break;
+            case '>': out += "\\textgreater{}"; break;
+            case '|': out += "\\textbar{}"; break;
+            case '"': out += "\\textquotedbl{}"; break;
+            case '_':
+            case '&':
+            case '%':
+            case '#':
+            case '$':
+            case '{':
+            case '}':
+                out += '\\';
+                out += c;
+                break;
+            default: out += c;
         }
     });
 }
@@ -125,12 +146,12 @@ std::string csv_field(std::string_view text) {
 std::string html_text(std::string_view text) {
     return map_clean(text, [](std::string& out, char c) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&#39;"; break;
-        default: out += c;
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            case '\'': out += "&#39;"; break;
+            default: out += c;
         }
     });
 }
@@ -142,9 +163,12 @@ std::string stem_from(std::string_view name, const Hasher& h) {
     for (char c : name) {
         if (slug.size() >= 48) break;
         const auto u = static_cast<unsigned char>(c);
-        if ((u >= 'a' && u <= 'z') || (u >= '0' && u <= '9') || c == '.' || c == '_' || c == '-') slug += c;
-        else if (u >= 'A' && u <= 'Z') slug += static_cast<char>(u - 'A' + 'a');
-        else if (slug.empty() || slug.back() != '-') slug += '-';
+        if ((u >= 'a' && u <= 'z') || (u >= '0' && u <= '9') || c == '.' || c == '_' || c == '-')
+            slug += c;
+        else if (u >= 'A' && u <= 'Z')
+            slug += static_cast<char>(u - 'A' + 'a');
+        else if (slug.empty() || slug.back() != '-')
+            slug += '-';
     }
     while (!slug.empty() && slug.front() == '.') slug.erase(0, 1);  // never a hidden file, never ".."
     while (!slug.empty() && (slug.back() == '-' || slug.back() == '_')) slug.pop_back();

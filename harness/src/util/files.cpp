@@ -1,10 +1,10 @@
 #include "util/files.hpp"
 
+#include <unistd.h>
 #include <atomic>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
-#include <unistd.h>
 
 namespace vobench {
 namespace fs = std::filesystem;

@@ -2,19 +2,19 @@
 
 #include <boost/dll/runtime_symbol_info.hpp>
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstring>
-#include <fcntl.h>
 #include <fstream>
-#include <spawn.h>
-#include <sys/prctl.h>
 #include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
 #include <thread>
-#include <unistd.h>
 
 extern char** environ;
 
@@ -30,7 +30,8 @@ std::string ChildResult::describe() const {
     if (cancelled) return "cancelled (killed)";
     if (signal_blame != 0) return "sent " + signal_name(signal_blame) + " to the harness (killed)";
     if (log_exceeded)
-        return "wrote more than the log limit of " + std::to_string(max_log_bytes >> 20) + " MB to stdout/stderr" + (exited ? "" : " (killed)");
+        return "wrote more than the log limit of " + std::to_string(max_log_bytes >> 20) + " MB to stdout/stderr" +
+               (exited ? "" : " (killed)");
     if (timed_out) return "timed out after " + std::to_string(timeout_s) + " s (killed)";
     if (memory_exceeded) return "exceeded the memory limit of " + std::to_string(memory_mb) + " MB (killed)";
     if (exited) return "exited with code " + std::to_string(exit_code);
@@ -253,8 +254,7 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         }
         if (result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded) {
             ::kill(-pid, SIGKILL);  // the whole process group (the child leads one either way)
-            while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-            }
+            while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
             break;
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -266,7 +266,8 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
         result.log_exceeded = fs::file_size(limits.log, ec) > limits.max_log_bytes && !ec;
     }
     if (limits.contain) {
-        const bool killed_by_us = result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded;
+        const bool killed_by_us =
+            result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded;
         ::kill(-pid, SIGKILL);
         const std::size_t running = kill_members(pid, tag);
         if (!killed_by_us) result.left_behind = running;

@@ -18,9 +18,9 @@
 namespace vobench {
 
 struct ChildLimits {
-    int timeout_s = 600;               // wall clock; then SIGKILL
-    uint64_t memory_mb = 0;            // resident set; 0: no limit. Checked every 5 ms; then SIGKILL
-    std::filesystem::path log;         // stdout and stderr go here (a file, never a pipe that could fill)
+    int timeout_s = 600;        // wall clock; then SIGKILL
+    uint64_t memory_mb = 0;     // resident set; 0: no limit. Checked every 5 ms; then SIGKILL
+    std::filesystem::path log;  // stdout and stderr go here (a file, never a pipe that could fill)
     // When this becomes true the child is killed (SIGKILL) and the result says `cancelled`: how Ctrl-C
     // reaches cells, which run in their own process group so that the terminal's SIGINT does not.
     const std::atomic<bool>* cancel = nullptr;
@@ -35,21 +35,21 @@ struct ChildLimits {
 };
 
 struct ChildResult {
-    bool exited = false;      // exited normally (exit_code valid)
+    bool exited = false;  // exited normally (exit_code valid)
     int exit_code = -1;
-    int signal = 0;           // the signal that ended it, when it did not exit
-    bool timed_out = false;   // killed by us after the timeout
+    int signal = 0;                // the signal that ended it, when it did not exit
+    bool timed_out = false;        // killed by us after the timeout
     bool memory_exceeded = false;  // killed by us over the memory limit
-    bool cancelled = false;   // killed by us because ChildLimits::cancel became true
-    bool log_exceeded = false;  // killed by us: wrote more than max_log_bytes
-    int signal_blame = 0;     // a process of the (contained) child sent this signal to us; killed
-    std::size_t left_behind = 0;  // processes of the child still running when it ended (killed)
-    uint64_t peak_rss_kb = 0; // peak resident set (VmHWM of the child; with contain, of its whole group)
+    bool cancelled = false;        // killed by us because ChildLimits::cancel became true
+    bool log_exceeded = false;     // killed by us: wrote more than max_log_bytes
+    int signal_blame = 0;          // a process of the (contained) child sent this signal to us; killed
+    std::size_t left_behind = 0;   // processes of the child still running when it ended (killed)
+    uint64_t peak_rss_kb = 0;      // peak resident set (VmHWM of the child; with contain, of its whole group)
     double wall_s = 0;
     int timeout_s = 0;
     uint64_t memory_mb = 0;
     uint64_t max_log_bytes = 0;
-    std::string output;       // run_self only: stdout and stderr, interleaved
+    std::string output;  // run_self only: stdout and stderr, interleaved
     // "exited with code 3", "killed by signal 11 (SIGSEGV)", "timed out after 120 s",
     // "exceeded the memory limit of 512 MB" ...
     std::string describe() const;

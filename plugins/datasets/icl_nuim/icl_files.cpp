@@ -15,9 +15,11 @@ std::vector<Association> parse_associations(const std::string& text, const std::
         std::istringstream fields(line);
         Association a;
         std::string extra;
-        if (!(fields >> a.t_depth >> a.depth >> a.t_rgb >> a.rgb) || (fields >> extra) || !std::isfinite(a.t_rgb) || !std::isfinite(a.t_depth))
+        if (!(fields >> a.t_depth >> a.depth >> a.t_rgb >> a.rgb) || (fields >> extra) || !std::isfinite(a.t_rgb) ||
+            !std::isfinite(a.t_depth))
             throw std::runtime_error(name + ":" + std::to_string(n) + ": expected `t_depth depth_file t_rgb rgb_file`");
-        if (!out.empty() && !(a.t_rgb > out.back().t_rgb)) throw std::runtime_error(name + ":" + std::to_string(n) + ": stamps must increase");
+        if (!out.empty() && !(a.t_rgb > out.back().t_rgb))
+            throw std::runtime_error(name + ":" + std::to_string(n) + ": stamps must increase");
         out.push_back(a);
     }
     if (out.empty()) throw std::runtime_error(name + ": no frames (empty sequence)");
@@ -67,9 +69,12 @@ std::vector<float> parse_ray_depth(const std::string& text, const std::string& n
     for (std::size_t i = 0; i < count; ++i) {
         char* end = nullptr;
         const double d = std::strtod(p, &end);
-        if (end == p) throw std::runtime_error(name + ": value " + std::to_string(i + 1) + " of " + std::to_string(count) + " is missing or not a number");
+        if (end == p)
+            throw std::runtime_error(name + ": value " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                                     " is missing or not a number");
         if (!std::isfinite(d) || d < 0)
-            throw std::runtime_error(name + ": value " + std::to_string(i + 1) + " of " + std::to_string(count) + " is not a non-negative finite number");
+            throw std::runtime_error(name + ": value " + std::to_string(i + 1) + " of " + std::to_string(count) +
+                                     " is not a non-negative finite number");
         out.push_back(static_cast<float>(d));
         p = end;
     }
@@ -92,7 +97,8 @@ std::vector<Eigen::Isometry3d> parse_sim(const std::string& text, const std::str
     std::vector<Eigen::Isometry3d> poses;
     for (std::size_t f = 0; f * 12 < v.size(); ++f) {
         Eigen::Matrix3d R;
-        R << v[f * 12 + 0], v[f * 12 + 1], v[f * 12 + 2], v[f * 12 + 4], v[f * 12 + 5], v[f * 12 + 6], v[f * 12 + 8], v[f * 12 + 9], v[f * 12 + 10];
+        R << v[f * 12 + 0], v[f * 12 + 1], v[f * 12 + 2], v[f * 12 + 4], v[f * 12 + 5], v[f * 12 + 6], v[f * 12 + 8], v[f * 12 + 9],
+            v[f * 12 + 10];
         if ((R.transpose() * R - Eigen::Matrix3d::Identity()).norm() > 1e-3 || R.determinant() < 0)
             throw std::runtime_error(name + ": frame " + std::to_string(f) + " is not a rotation");
         Eigen::Isometry3d T = Eigen::Isometry3d::Identity();

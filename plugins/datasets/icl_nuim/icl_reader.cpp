@@ -29,8 +29,8 @@
 
 #include <vobench/plugin.hpp>
 
-#include <Eigen/Geometry>
 #include <fmt/format.h>
+#include <Eigen/Geometry>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -76,21 +76,35 @@ public:
             list_povray_frames();
         } else {
             const fs::path list = root_ / "associations.txt";
-            for (const auto& a : vobench::files::parsed([&] { return vobench::icl::parse_associations(vobench::files::read_text(list), list.string()); }))
+            for (const auto& a :
+                 vobench::files::parsed([&] { return vobench::icl::parse_associations(vobench::files::read_text(list), list.string()); }))
                 frames_.push_back({stamp_of(a.t_rgb), a.rgb, a.depth});
         }
         const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
         std::vector<double> k = {o.get_double("fx"), o.get_double("fy"), o.get_double("cx"), o.get_double("cy")};
         if (povray_) k[1] = std::abs(k[1]);  // poses from the camera vectors: upright images
         if (fs::exists(root_ / "camera.txt"))
-            k = vobench::files::parsed([&] { return vobench::icl::parse_camera(vobench::files::read_text(root_ / "camera.txt"), (root_ / "camera.txt").string()); });
+            k = vobench::files::parsed([&] {
+                return vobench::icl::parse_camera(vobench::files::read_text(root_ / "camera.txt"), (root_ / "camera.txt").string());
+            });
         set_camera(k, first.cols, first.rows);
-        if (povray_ && o.get_string("ground_truth").empty()) poses_from_camera_vectors();
-        else load_ground_truth(o.get_string("ground_truth"));
+        if (povray_ && o.get_string("ground_truth").empty())
+            poses_from_camera_vectors();
+        else
+            load_ground_truth(o.get_string("ground_truth"));
         name_ = fs::absolute(root_).lexically_normal().filename().string();
-        info_ = {sizeof(info_), name_.c_str(), "icl_nuim", &camera_, first.cols, first.rows, depth_scale(),
-                 frames_.size(), ground_truth_.empty() ? nullptr : ground_truth_.data(), ground_truth_.size() / 8,
-                 0.0, 0.0};  // rendered by POV-Ray: the poses are exact
+        info_ = {sizeof(info_),
+                 name_.c_str(),
+                 "icl_nuim",
+                 &camera_,
+                 first.cols,
+                 first.rows,
+                 depth_scale(),
+                 frames_.size(),
+                 ground_truth_.empty() ? nullptr : ground_truth_.data(),
+                 ground_truth_.size() / 8,
+                 0.0,
+                 0.0};  // rendered by POV-Ray: the poses are exact
     }
 
     const vobench_sequence_info& describe() override {
@@ -102,7 +116,8 @@ public:
         vobench::files::require_frame_index(index, frames_.size());
         const Frame& f = frames_[index];
         const cv::Mat color = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
-        const cv::Mat depth = povray_ ? ray_depth(root_ / f.depth, color.size()) : vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);
+        const cv::Mat depth =
+            povray_ ? ray_depth(root_ / f.depth, color.size()) : vobench::files::load_image(root_ / f.depth, cv::IMREAD_UNCHANGED);
         if (!povray_) vobench::files::require_depth16(depth, root_ / f.depth);
         if (color.cols != camera_.width || color.rows != camera_.height || depth.size() != color.size())
             throw Error(VOBENCH_IO_ERROR, "frame " + std::to_string(index) + ": colour " + (root_ / f.color).string() + " is " +
@@ -146,7 +161,8 @@ private:
             std::vector<cv::Point2f> pixels, rays;
             for (int v = 0; v < size.height; ++v)
                 for (int u = 0; u < size.width; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
-            const cv::Matx33d K(camera_.fx, 0, camera_.cx, 0, flip_ ? -camera_.fy : camera_.fy, flip_ ? (size.height - 1) - camera_.cy : camera_.cy, 0, 0, 1);
+            const cv::Matx33d K(camera_.fx, 0, camera_.cx, 0, flip_ ? -camera_.fy : camera_.fy,
+                                flip_ ? (size.height - 1) - camera_.cy : camera_.cy, 0, 0, 1);
             cv::undistortPoints(pixels, rays, K, cv::Mat(1, camera_.distortion_count, CV_64F, camera_.distortion));
             ray_norm_.create(size, CV_32F);
             for (std::size_t i = 0; i < rays.size(); ++i)
@@ -158,7 +174,8 @@ private:
         });
         cv::Mat z(size, CV_32F);
         for (int i = 0; i < size.area(); ++i)
-            z.at<float>(i / size.width, i % size.width) = static_cast<float>(d[static_cast<std::size_t>(i)] * depth_unit_) / ray_norm_.at<float>(i / size.width, i % size.width);
+            z.at<float>(i / size.width, i % size.width) =
+                static_cast<float>(d[static_cast<std::size_t>(i)] * depth_unit_) / ray_norm_.at<float>(i / size.width, i % size.width);
         return z;
     }
 
@@ -167,12 +184,14 @@ private:
         for (const Frame& f : frames_) {
             const fs::path path = root_ / (f.color.substr(0, f.color.size() - 4) + ".txt");
             if (!fs::exists(path)) continue;  // a frame without a pose
-            auto v = vobench::files::parsed([&] { return vobench::icl::parse_camera_vectors(vobench::files::read_text(path), path.string()); });
+            auto v =
+                vobench::files::parsed([&] { return vobench::icl::parse_camera_vectors(vobench::files::read_text(path), path.string()); });
             for (const char* needed : {"cam_pos", "cam_dir", "cam_up"})
                 if (!v.count(needed)) throw Error(VOBENCH_IO_ERROR, path.string() + ": no " + std::string(needed));
             const Eigen::Vector3d z = v["cam_dir"].normalized();
             const Eigen::Vector3d up = v["cam_up"] - v["cam_up"].dot(z) * z;
-            if (!(up.norm() > 1e-9) || !z.allFinite()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cam_up is parallel to cam_dir (or zero)");
+            if (!(up.norm() > 1e-9) || !z.allFinite())
+                throw Error(VOBENCH_IO_ERROR, path.string() + ": cam_up is parallel to cam_dir (or zero)");
             const Eigen::Vector3d y = -up.normalized(), x = y.cross(z);
             Eigen::Matrix3d R;
             R << x, y, z;
@@ -203,12 +222,14 @@ private:
             const std::string suffix = ".gt.freiburg";
             for (const auto& entry : fs::directory_iterator(root_)) {
                 const std::string name = entry.path().filename().string();
-                if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0) file = entry.path();
+                if (name.size() > suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0)
+                    file = entry.path();
             }
         }
         if (file.empty()) return;  // no ground truth: tracking still works
         if (file.extension() == ".sim") {
-            const auto poses = vobench::files::parsed([&] { return vobench::icl::parse_sim(vobench::files::read_text(file), file.string()); });
+            const auto poses =
+                vobench::files::parsed([&] { return vobench::icl::parse_sim(vobench::files::read_text(file), file.string()); });
             for (std::size_t i = 0; i < poses.size(); ++i)
                 add_pose(stamp_of(static_cast<double>(i)), poses[i].translation(), Eigen::Quaterniond(poses[i].linear()));
             return;

@@ -85,8 +85,7 @@ std::vector<MatchedFrame> parse_matched(const std::string& text, const std::stri
         // Beyond 2^53 a double no longer holds every integer (and a long long may not hold it at all).
         if (id < 0 || id != std::floor(id) || id > 9007199254740992.0)
             throw std::runtime_error(where + "the frame number is not an integer in [0, 2^53]");
-        if (!frames.empty() && id <= static_cast<double>(frames.back().id))
-            throw std::runtime_error(where + "frame numbers must increase");
+        if (!frames.empty() && id <= static_cast<double>(frames.back().id)) throw std::runtime_error(where + "frame numbers must increase");
         frames.push_back({static_cast<long long>(id), f[1], f[2]});
     }
     if (frames.empty()) throw std::runtime_error(name + ": no frames (empty sequence)");

@@ -33,35 +33,39 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-
 // PUT's calibration of the two Kinect colour cameras (camData.txt), used when a folder has none.
-const vobench::putk2::CameraCalibration kPutKinect1{"00022000", 532.77250, 531.85745, 312.23007, 260.11708,
-                                                    {0.16054, -0.24682, 0.00136, 0.00149, 0, 0, 0, 0}};
-const vobench::putk2::CameraCalibration kPutKinect2{"00033000", 1078.68499, 1076.474256, 952.6592286, 530.7386644,
-                                                    {0.02712800285, -0.003876435388, -0.0003782667962, -0.002409935964,
-                                                     0.05862808573, -0.02856023826, 0.05860957117, 0.03897302154}};
+const vobench::putk2::CameraCalibration kPutKinect1{"00022000", 532.77250, 531.85745,
+                                                    312.23007,  260.11708, {0.16054, -0.24682, 0.00136, 0.00149, 0, 0, 0, 0}};
+const vobench::putk2::CameraCalibration kPutKinect2{
+    "00033000",
+    1078.68499,
+    1076.474256,
+    952.6592286,
+    530.7386644,
+    {0.02712800285, -0.003876435388, -0.0003782667962, -0.002409935964, 0.05862808573, -0.02856023826, 0.05860957117, 0.03897302154}};
 
 class Putk2Reader : public vobench::sdk::Dataset {
 public:
     static vobench::sdk::PluginInfo info() {
-        return {"putk2",
-                "1.0.0",
-                "PUTK² (Kinect v1 and v2, Kraft et al. 2016): both layouts, depth rescaled (v1) or registered (v2) to colour.",
-                "MIT",
-                "https://doi.org/10.1007/s00138-016-0802-6",
-                {{"sensor", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|kinect1|kinect2", "which Kinect; auto: from the colour image size"},
-                 {"layout", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|putk2|putk2-tum", "file layout; auto: matched.txt or rgb.txt"},
-                 {"calibration", VOBENCH_PARAM_STRING, "", 0, 0, "", "camData.txt to use (default: the folder's, else PUT's)"},
-                 {"camera_id", VOBENCH_PARAM_STRING, "", 0, 0, "", "camera id in camData.txt (default 00022000 / 00033000)"},
-                 {"depth_camera", VOBENCH_PARAM_STRING, "", 0, 0, "", "Kinect v2 depth_camera.txt (default: the folder's, else nominal)"},
-                 {"registration", VOBENCH_PARAM_ENUM, "splat", 0, 0, "splat|opencv",
-                  "Kinect v2 depth to colour: z-buffered splats, or OpenCV contrib registerDepth (sparse)"},
-                 {"ground_truth", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|tum|raw|none",
-                  "groundtruth.txt (tum), marker trajectory.txt + camera-in-marker (raw), or none"},
-                 {"camera_in_marker", VOBENCH_PARAM_STRING, "", 0, 0, "", "for raw ground truth (default: the folder's cameraZnacznik.txt)"},
-                 {"frame_rate", VOBENCH_PARAM_DOUBLE, "10", 0.1, 1000, "", "frames per second: stamps are frame / rate"},
-                 {"depth_unit", VOBENCH_PARAM_DOUBLE, "0.001", 1e-6, 1, "", "metres per depth unit"},
-                 {"max_difference", VOBENCH_PARAM_DOUBLE, "0.02", 0.0001, 1, "", "putk2-tum: colour-depth association, seconds"}}};
+        return {
+            "putk2",
+            "1.0.0",
+            "PUTK² (Kinect v1 and v2, Kraft et al. 2016): both layouts, depth rescaled (v1) or registered (v2) to colour.",
+            "MIT",
+            "https://doi.org/10.1007/s00138-016-0802-6",
+            {{"sensor", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|kinect1|kinect2", "which Kinect; auto: from the colour image size"},
+             {"layout", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|putk2|putk2-tum", "file layout; auto: matched.txt or rgb.txt"},
+             {"calibration", VOBENCH_PARAM_STRING, "", 0, 0, "", "camData.txt to use (default: the folder's, else PUT's)"},
+             {"camera_id", VOBENCH_PARAM_STRING, "", 0, 0, "", "camera id in camData.txt (default 00022000 / 00033000)"},
+             {"depth_camera", VOBENCH_PARAM_STRING, "", 0, 0, "", "Kinect v2 depth_camera.txt (default: the folder's, else nominal)"},
+             {"registration", VOBENCH_PARAM_ENUM, "splat", 0, 0, "splat|opencv",
+              "Kinect v2 depth to colour: z-buffered splats, or OpenCV contrib registerDepth (sparse)"},
+             {"ground_truth", VOBENCH_PARAM_ENUM, "auto", 0, 0, "auto|tum|raw|none",
+              "groundtruth.txt (tum), marker trajectory.txt + camera-in-marker (raw), or none"},
+             {"camera_in_marker", VOBENCH_PARAM_STRING, "", 0, 0, "", "for raw ground truth (default: the folder's cameraZnacznik.txt)"},
+             {"frame_rate", VOBENCH_PARAM_DOUBLE, "10", 0.1, 1000, "", "frames per second: stamps are frame / rate"},
+             {"depth_unit", VOBENCH_PARAM_DOUBLE, "0.001", 1e-6, 1, "", "metres per depth unit"},
+             {"max_difference", VOBENCH_PARAM_DOUBLE, "0.02", 0.0001, 1, "", "putk2-tum: colour-depth association, seconds"}}};
     }
 
     void open(const std::string& path, const vobench::sdk::Params& o) override {
@@ -74,10 +78,14 @@ public:
         const cv::Mat first = vobench::files::load_image(root_ / frames_.front().color, cv::IMREAD_COLOR);
         std::string sensor = o.get_string("sensor");
         if (sensor == "auto") {
-            if (first.cols == 640 && first.rows == 480) sensor = "kinect1";
-            else if (first.cols == 1920 && first.rows == 1080) sensor = "kinect2";
-            else throw Error(VOBENCH_INVALID_ARGUMENT, (root_ / frames_.front().color).string() + ": cannot tell the sensor from a " +
-                                                           std::to_string(first.cols) + "x" + std::to_string(first.rows) + " image; set sensor=");
+            if (first.cols == 640 && first.rows == 480)
+                sensor = "kinect1";
+            else if (first.cols == 1920 && first.rows == 1080)
+                sensor = "kinect2";
+            else
+                throw Error(VOBENCH_INVALID_ARGUMENT, (root_ / frames_.front().color).string() + ": cannot tell the sensor from a " +
+                                                          std::to_string(first.cols) + "x" + std::to_string(first.rows) +
+                                                          " image; set sensor=");
         }
         sensor_ = sensor;
         load_calibration(o, first.size());
@@ -109,8 +117,9 @@ public:
         const fs::path depth_path = root_ / f.depth;
         cv::Mat raw = vobench::files::load_image(depth_path, cv::IMREAD_UNCHANGED);
         if (color_.cols != camera_.width || color_.rows != camera_.height)
-            throw Error(VOBENCH_IO_ERROR, (root_ / f.color).string() + ": " + std::to_string(color_.cols) + "x" + std::to_string(color_.rows) +
-                                              ", expected " + std::to_string(camera_.width) + "x" + std::to_string(camera_.height));
+            throw Error(VOBENCH_IO_ERROR, (root_ / f.color).string() + ": " + std::to_string(color_.cols) + "x" +
+                                              std::to_string(color_.rows) + ", expected " + std::to_string(camera_.width) + "x" +
+                                              std::to_string(camera_.height));
         vobench::files::require_depth16(raw, depth_path);
         int32_t format;
         if (raw.size() == color_.size()) {  // already registered to colour
@@ -152,27 +161,30 @@ private:
 
     void load_frames(const vobench::sdk::Params& o) {
         std::string layout = o.get_string("layout");
-        if (layout == "auto")
-            layout = fs::exists(root_ / "matched.txt") ? "putk2" : fs::exists(root_ / "rgb.txt") ? "putk2-tum" : "";
+        if (layout == "auto") layout = fs::exists(root_ / "matched.txt") ? "putk2" : fs::exists(root_ / "rgb.txt") ? "putk2-tum" : "";
         if (layout.empty()) throw Error(VOBENCH_IO_ERROR, root_.string() + ": neither matched.txt nor rgb.txt: not a PUTK² sequence");
         if (layout == "putk2") {
             const fs::path list = root_ / "matched.txt";
-            for (const auto& m : vobench::files::parsed([&] { return vobench::putk2::parse_matched(vobench::files::read_text(list), list.string()); })) {
+            for (const auto& m :
+                 vobench::files::parsed([&] { return vobench::putk2::parse_matched(vobench::files::read_text(list), list.string()); })) {
                 const double t = static_cast<double>(m.id) / rate_;
                 frames_.push_back({t, t, m.color, m.depth});
             }
             return;
         }
         const fs::path rgb_path = root_ / "rgb.txt", depth_path = root_ / "depth.txt";
-        const auto rgb = vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(rgb_path), rgb_path.string()); });
-        const auto depth = vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(depth_path), depth_path.string()); });
+        const auto rgb =
+            vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(rgb_path), rgb_path.string()); });
+        const auto depth =
+            vobench::files::parsed([&] { return vobench::tum::parse_list(vobench::files::read_text(depth_path), depth_path.string()); });
         std::vector<double> a, b;
         for (const auto& e : rgb) a.push_back(e.stamp);
         for (const auto& e : depth) b.push_back(e.stamp);
         vobench::metrics::AssociationOptions assoc;
         assoc.max_difference = o.get_double("max_difference");
         const auto matches = vobench::files::parsed([&] { return vobench::metrics::associate(a, b, assoc).matches; });
-        for (const auto& m : matches) frames_.push_back({rgb[m.first].stamp, depth[m.second].stamp, rgb[m.first].path, depth[m.second].path});
+        for (const auto& m : matches)
+            frames_.push_back({rgb[m.first].stamp, depth[m.second].stamp, rgb[m.first].path, depth[m.second].path});
     }
 
     void load_calibration(const vobench::sdk::Params& o, cv::Size color_size) {
@@ -182,12 +194,16 @@ private:
         if (id.empty()) id = sensor_ == "kinect1" ? kPutKinect1.id : kPutKinect2.id;
         vobench::putk2::CameraCalibration cal = sensor_ == "kinect1" ? kPutKinect1 : kPutKinect2;
         if (!file.empty()) {
-            const auto cameras = vobench::files::parsed([&] { return vobench::putk2::parse_cam_data(vobench::files::read_text(file), file); });
+            const auto cameras =
+                vobench::files::parsed([&] { return vobench::putk2::parse_cam_data(vobench::files::read_text(file), file); });
             bool found = false;
             std::string ids;
             for (const auto& c : cameras) {
                 ids += (ids.empty() ? "" : ", ") + c.id;
-                if (c.id == id) { cal = c; found = true; }
+                if (c.id == id) {
+                    cal = c;
+                    found = true;
+                }
             }
             if (!found) throw Error(VOBENCH_INVALID_ARGUMENT, file + ": no camera " + id + " (it has " + ids + "); set camera_id=");
         } else if (id != cal.id) {
@@ -208,7 +224,8 @@ private:
             std::string depth_file = o.get_string("depth_camera");
             if (depth_file.empty() && fs::exists(root_ / "depth_camera.txt")) depth_file = (root_ / "depth_camera.txt").string();
             if (!depth_file.empty()) {
-                depth_camera_ = vobench::files::parsed([&] { return vobench::putk2::parse_depth_camera(vobench::files::read_text(depth_file), depth_file); });
+                depth_camera_ = vobench::files::parsed(
+                    [&] { return vobench::putk2::parse_depth_camera(vobench::files::read_text(depth_file), depth_file); });
             } else {
                 // Nominal Kinect v2 depth camera (≈70°×60°), 5.2 cm beside the colour camera.
                 depth_camera_ = {365.5, 365.5, 255.5, 211.5, Eigen::Isometry3d::Identity()};
@@ -227,7 +244,8 @@ private:
         if (which == "raw") {
             ro.format = vobench::metrics::TrajectoryFormat::Putk2Raw;
             file = root_ / "trajectory.txt";
-            const std::string cim = o.get_string("camera_in_marker").empty() ? (root_ / "cameraZnacznik.txt").string() : o.get_string("camera_in_marker");
+            const std::string cim =
+                o.get_string("camera_in_marker").empty() ? (root_ / "cameraZnacznik.txt").string() : o.get_string("camera_in_marker");
             ro.camera_in_marker = vobench::files::parsed([&] { return vobench::metrics::read_camera_in_marker(cim); });
         }
         const auto gt = vobench::files::parsed([&] { return vobench::metrics::read_trajectory(file, ro); });
@@ -250,7 +268,8 @@ private:
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) Rt(i, j) = M(i, j);
         cv::Mat registered;
-        cv::rgbd::registerDepth(Kd, Kc, cv::Mat(1, 8, CV_64F, const_cast<double*>(camera_.distortion)), Rt, metres, color_.size(), registered, true);
+        cv::rgbd::registerDepth(Kd, Kc, cv::Mat(1, 8, CV_64F, const_cast<double*>(camera_.distortion)), Rt, metres, color_.size(),
+                                registered, true);
         registered.setTo(0, registered != registered);  // NaN (no reading) → 0
         return registered;
     }

@@ -39,7 +39,6 @@ const Intrinsics kFr2{520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.
 const Intrinsics kFr3{535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0}};
 const Intrinsics kRosDefault{525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0}};
 
-
 class TumReader : public vobench::sdk::Dataset {
 public:
     static vobench::sdk::PluginInfo info() {
@@ -135,8 +134,8 @@ public:
             throw Error(VOBENCH_IO_ERROR, "frame " + std::to_string(index) + ": colour " + color_path.string() + " is " +
                                               std::to_string(color_.cols) + "x" + std::to_string(color_.rows) + ", depth " +
                                               depth_path.string() + " is " + std::to_string(depth_.cols) + "x" +
-                                              std::to_string(depth_.rows) + " (expected " + std::to_string(camera_.width) +
-                                              "x" + std::to_string(camera_.height) + " for both)");
+                                              std::to_string(depth_.rows) + " (expected " + std::to_string(camera_.width) + "x" +
+                                              std::to_string(camera_.height) + " for both)");
         if (undistort_) {
             cv::Mat c, d;
             cv::remap(color_, c, map1_, map2_, cv::INTER_LINEAR);
@@ -155,7 +154,6 @@ private:
         vobench::tum::ListEntry color, depth;
     };
 
-
     void set_intrinsics(const vobench::sdk::Params& options) {
         std::string which = options.get_string("intrinsics");
         if (which == "auto" && fs::exists(root_ / "camera.txt")) {
@@ -172,9 +170,14 @@ private:
         }
         Intrinsics in = kRosDefault;
         sensor_ = "kinect1";
-        if (which == "fr1") in = kFr1;
-        else if (which == "fr2") in = kFr2;
-        else if (which == "fr3") { in = kFr3; sensor_ = "xtion"; }
+        if (which == "fr1")
+            in = kFr1;
+        else if (which == "fr2")
+            in = kFr2;
+        else if (which == "fr3") {
+            in = kFr3;
+            sensor_ = "xtion";
+        }
         camera_.fx = in.fx;
         camera_.fy = in.fy;
         camera_.cx = in.cx;
@@ -213,8 +216,8 @@ private:
             double x;
             while (fields >> x) v.push_back(x);
             if (!fields.eof() || v.size() < 4 || v.size() > 12)
-                throw Error(VOBENCH_IO_ERROR, path.string() + ":" + std::to_string(number) +
-                                                  ": expected `fx fy cx cy` and up to 8 distortion coefficients");
+                throw Error(VOBENCH_IO_ERROR,
+                            path.string() + ":" + std::to_string(number) + ": expected `fx fy cx cy` and up to 8 distortion coefficients");
             camera_.fx = v[0];
             camera_.fy = v[1];
             camera_.cx = v[2];

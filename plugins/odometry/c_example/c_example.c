@@ -55,8 +55,7 @@ static vobench_status c_start(vobench_odometry* self, const vobench_odometry_con
             return VOBENCH_INVALID_ARGUMENT;
         }
         if (!parse_number(config->params->values[i], &value) || fabs(value) > 10.0) {
-            snprintf(self->error, sizeof self->error, "parameter '%s': '%s' is not a number in [-10, 10]", key,
-                     config->params->values[i]);
+            snprintf(self->error, sizeof self->error, "parameter '%s': '%s' is not a number in [-10, 10]", key, config->params->values[i]);
             return VOBENCH_INVALID_ARGUMENT;
         }
         self->velocity[axis] = value;
@@ -64,8 +63,7 @@ static vobench_status c_start(vobench_odometry* self, const vobench_odometry_con
     return VOBENCH_OK;
 }
 
-static vobench_status c_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose,
-                                vobench_tracking_status* status) {
+static vobench_status c_process(vobench_odometry* self, const vobench_frame* frame, vobench_pose* pose, vobench_tracking_status* status) {
     double dt;
     self->error[0] = '\0';
     if (self->host && self->host->stage_begin) self->host->stage_begin(self->host->context, "integrate");
@@ -96,8 +94,7 @@ static const char* c_last_error(vobench_odometry* self) { return self->error; }
 
 static void c_destroy(vobench_odometry* self) { free(self); }
 
-static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api), c_create, c_start, c_process,
-                                           c_reset, c_last_error, c_destroy};
+static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api), c_create, c_start, c_process, c_reset, c_last_error, c_destroy};
 
 static const vobench_plugin_descriptor k_descriptor = {
     sizeof(vobench_plugin_descriptor),
@@ -115,8 +112,7 @@ static const vobench_plugin_descriptor k_descriptor = {
     &k_api,
 };
 
-VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version,
-                                                                        uint32_t host_api_version) {
+VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version, uint32_t host_api_version) {
     if (host_abi_version != VOBENCH_ABI_VERSION || host_api_version < 1) return NULL;
     return &k_descriptor;
 }

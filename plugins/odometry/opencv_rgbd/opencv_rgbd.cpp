@@ -39,10 +39,14 @@ public:
         const cv::Mat K = (cv::Mat_<float>(3, 3) << camera.fx, 0, camera.cx, 0, camera.fy, camera.cy, 0, 0, 1);
         const float min_depth = static_cast<float>(p.get_double("min_depth")), max_depth = static_cast<float>(p.get_double("max_depth"));
         const float diff = static_cast<float>(p.get_double("max_depth_diff")), part = static_cast<float>(p.get_double("max_points_part"));
-        if (method == "rgbd") odometry_ = cv::makePtr<cv::rgbd::RgbdOdometry>(K, min_depth, max_depth, diff, std::vector<int>(), std::vector<float>(), part);
-        else if (method == "icp") odometry_ = cv::makePtr<cv::rgbd::ICPOdometry>(K, min_depth, max_depth, diff, part);
-        else if (method == "rgbd_icp") odometry_ = cv::makePtr<cv::rgbd::RgbdICPOdometry>(K, min_depth, max_depth, diff, part);
-        else odometry_ = cv::makePtr<cv::rgbd::FastICPOdometry>(K, diff);
+        if (method == "rgbd")
+            odometry_ = cv::makePtr<cv::rgbd::RgbdOdometry>(K, min_depth, max_depth, diff, std::vector<int>(), std::vector<float>(), part);
+        else if (method == "icp")
+            odometry_ = cv::makePtr<cv::rgbd::ICPOdometry>(K, min_depth, max_depth, diff, part);
+        else if (method == "rgbd_icp")
+            odometry_ = cv::makePtr<cv::rgbd::RgbdICPOdometry>(K, min_depth, max_depth, diff, part);
+        else
+            odometry_ = cv::makePtr<cv::rgbd::FastICPOdometry>(K, diff);
         reset();
     }
 
@@ -81,7 +85,7 @@ private:
         cv::Mat gray, depth;
         vobench::rgbd::to_gray(*frame.color, gray);
         vobench::rgbd::wrap(*frame.depth).convertTo(depth, CV_32F, frame.depth_scale);  // metres
-        depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0);  // OpenCV: NaN marks no reading
+        depth.setTo(std::numeric_limits<float>::quiet_NaN(), depth == 0);               // OpenCV: NaN marks no reading
         return cv::makePtr<cv::rgbd::OdometryFrame>(gray, depth);
     }
 

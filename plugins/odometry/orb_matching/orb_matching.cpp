@@ -86,8 +86,10 @@ public:
             Host::Stage s(host(), "estimation");
             const vobench::rigid::RansacResult r = vobench::rigid::ransac_rigid(from, to, ransac_, rng_);
             host().counter("inliers", static_cast<double>(r.inliers.size()));
-            if (r.ok && static_cast<int>(r.inliers.size()) >= min_inliers_) world_from_current_ = world_from_current_ * r.transform;
-            else status = VOBENCH_TRACKING_LOST;  // hold the pose; match the next frame against this one
+            if (r.ok && static_cast<int>(r.inliers.size()) >= min_inliers_)
+                world_from_current_ = world_from_current_ * r.transform;
+            else
+                status = VOBENCH_TRACKING_LOST;  // hold the pose; match the next frame against this one
         }
         previous_points_ = std::move(points);
         previous_descriptors_ = descriptors;

@@ -16,7 +16,8 @@ std::vector<cv::KeyPoint> dbscan_strongest(const std::vector<cv::KeyPoint>& poin
     const double eps2 = eps * eps;
     auto neighbours = [&](std::size_t i, std::vector<std::size_t>& out) {
         out.clear();
-        const int64_t cx = static_cast<int64_t>(std::floor(points[i].pt.x / eps)), cy = static_cast<int64_t>(std::floor(points[i].pt.y / eps));
+        const int64_t cx = static_cast<int64_t>(std::floor(points[i].pt.x / eps)),
+                      cy = static_cast<int64_t>(std::floor(points[i].pt.y / eps));
         for (int64_t dx = -1; dx <= 1; ++dx)
             for (int64_t dy = -1; dy <= 1; ++dy) {
                 auto it = grid.find(((cx + dx) << 32) ^ ((cy + dy) & 0xffffffff));

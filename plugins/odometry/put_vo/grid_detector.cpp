@@ -27,8 +27,10 @@ std::vector<cv::KeyPoint> GridDetector::detect(const cv::Mat& gray) {
             orbs_[static_cast<std::size_t>(cell)]->detect(gray(cv::Rect(x0, y0, x1 - x0, y1 - y0)), kps);
             // Adapt the threshold for the next key frame: too few → lower it, plenty → raise it.
             int& t = thresholds_[static_cast<std::size_t>(cell)];
-            if (static_cast<int>(kps.size()) < options_.per_cell_target) t = std::max(options_.threshold_min, t - 3);
-            else if (static_cast<int>(kps.size()) >= 2 * options_.per_cell_target) t = std::min(options_.threshold_max, t + 3);
+            if (static_cast<int>(kps.size()) < options_.per_cell_target)
+                t = std::max(options_.threshold_min, t - 3);
+            else if (static_cast<int>(kps.size()) >= 2 * options_.per_cell_target)
+                t = std::min(options_.threshold_max, t + 3);
             for (cv::KeyPoint& k : kps) {
                 k.pt.x += static_cast<float>(x0);
                 k.pt.y += static_cast<float>(y0);

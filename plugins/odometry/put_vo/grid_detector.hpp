@@ -10,9 +10,9 @@
 namespace put_vo {
 
 struct GridDetectorOptions {
-    int grid = 4;                 // cells per side
-    int overlap_px = 32;          // ORB ignores ~31 px inside each window's border: overlap by more
-    int per_cell_target = 40;     // features wanted per cell
+    int grid = 4;              // cells per side
+    int overlap_px = 32;       // ORB ignores ~31 px inside each window's border: overlap by more
+    int per_cell_target = 40;  // features wanted per cell
     int threshold_init = 20, threshold_min = 5, threshold_max = 80;
 };
 
@@ -24,7 +24,7 @@ public:
 
 private:
     GridDetectorOptions options_;
-    std::vector<int> thresholds_;        // per cell, carried between calls
+    std::vector<int> thresholds_;  // per cell, carried between calls
     std::vector<cv::Ptr<cv::ORB>> orbs_;
 };
 

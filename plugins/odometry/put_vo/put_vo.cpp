@@ -179,8 +179,7 @@ private:
         if (lk_fb_threshold_ > 0) {
             back = from;
             const cv::TermCriteria quick(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, lk_criteria_.epsilon);
-            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, 0, quick,
-                                     cv::OPTFLOW_USE_INITIAL_FLOW);
+            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, 0, quick, cv::OPTFLOW_USE_INITIAL_FLOW);
         }
         std::size_t kept = 0;
         for (std::size_t i = 0; i < tracked_.size(); ++i) {
@@ -269,7 +268,10 @@ private:
                 bool near = false;
                 for (const Feature& f : tracked_) {
                     const double dx = f.position.x - k.pt.x, dy = f.position.y - k.pt.y;
-                    if (dx * dx + dy * dy < min_d2) { near = true; break; }
+                    if (dx * dx + dy * dy < min_d2) {
+                        near = true;
+                        break;
+                    }
                 }
                 if (!near) added.push_back({k.pt, k.response, median_flow_});
             }

@@ -40,8 +40,10 @@ public:
             for (int y = 0; y < depth.height; ++y) {
                 const auto* row = reinterpret_cast<const uint8_t*>(depth.data) + static_cast<std::size_t>(y) * depth.stride_bytes;
                 for (int x = 0; x < depth.width; ++x) {
-                    if (depth.format == VOBENCH_PIXEL_DEPTH_U16) valid += reinterpret_cast<const uint16_t*>(row)[x] != 0;
-                    else valid += reinterpret_cast<const float*>(row)[x] > 0.0f;
+                    if (depth.format == VOBENCH_PIXEL_DEPTH_U16)
+                        valid += reinterpret_cast<const uint16_t*>(row)[x] != 0;
+                    else
+                        valid += reinterpret_cast<const float*>(row)[x] > 0.0f;
                 }
             }
             ratio = static_cast<double>(valid) / (static_cast<double>(depth.width) * depth.height);
