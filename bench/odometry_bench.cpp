@@ -4,9 +4,9 @@
 // present. Also the renderer's frames/s per sensor.
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
-#include "run/frame_cache.hpp"
-#include "run/frame_prefetcher.hpp"
 #include "synth/sequence_writer.hpp"
+#include "track/frame_cache.hpp"
+#include "track/frame_prefetcher.hpp"
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>

@@ -1,9 +1,9 @@
 // The icl_nuim reader on sequences the generator wrote in ICL-NUIM's TUM-compatible layout (stored
 // upside down, fy < 0), against the same sequence in the TUM layout.
 #include "abi/instances.hpp"
-#include "run/track.hpp"
 #include "synth/sequence_writer.hpp"
 #include "test_support.hpp"
+#include "track/track.hpp"
 
 #include <catch2/catch.hpp>
 #include <opencv2/core.hpp>

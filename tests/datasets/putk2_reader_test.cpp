@@ -1,9 +1,9 @@
 // The putk2 reader on sequences the generator wrote in every layout (round trips), on PUTK²'s real
 // calibration file, and on bad input.
 #include "abi/instances.hpp"
-#include "run/track.hpp"
 #include "synth/sequence_writer.hpp"
 #include "test_support.hpp"
+#include "track/track.hpp"
 
 #include <catch2/catch.hpp>
 #include <opencv2/core.hpp>

@@ -1,6 +1,6 @@
 #include "abi/instances.hpp"
-#include "run/track.hpp"
 #include "test_support.hpp"
+#include "track/track.hpp"
 
 #include <catch2/catch.hpp>
 #include <opencv2/imgcodecs.hpp>

@@ -1,7 +1,7 @@
 // put_vo against real data (TUM fr1/rpy) and the synthetic Kinect v1/v2 sequences.
-#include "run/track.hpp"
 #include "synth/sequence_writer.hpp"
 #include "test_support.hpp"
+#include "track/track.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -14,10 +14,10 @@ ALLOWED = {
     "record": {"abi", "metrics", "util"},
     "synth": {"metrics", "util"},
     "groundtruth": {"metrics", "util"},
-    "run": {"record", "abi", "metrics", "util"},
-    "sweep": {"run", "record", "abi", "synth", "metrics", "util"},
+    "track": {"record", "abi", "metrics", "util"},
+    "sweep": {"track", "record", "abi", "synth", "metrics", "util"},
     "report": {"record", "metrics", "util"},
-    "cli": {"report", "sweep", "run", "record", "abi", "synth", "groundtruth", "metrics", "util"},
+    "cli": {"report", "sweep", "track", "record", "abi", "synth", "groundtruth", "metrics", "util"},
 }
 
 root = os.path.join(sys.argv[1], "harness", "src")

@@ -1,6 +1,6 @@
 // vobench data info — describe a sequence through its reader plugin.
 #include "cli/commands.hpp"
-#include "run/track.hpp"
+#include "track/track.hpp"
 #include "util/files.hpp"
 
 #include <fmt/format.h>

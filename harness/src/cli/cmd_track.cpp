@@ -2,7 +2,7 @@
 #include "cli/commands.hpp"
 #include "cli/protocol_options.hpp"
 #include "metrics/metric_catalog.hpp"
-#include "run/track.hpp"
+#include "track/track.hpp"
 #include "util/files.hpp"
 
 #include <fmt/format.h>

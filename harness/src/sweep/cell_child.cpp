@@ -1,8 +1,8 @@
 // cell_child.cpp — the child side of one cell (`vobench cell-exec WORKDIR`): reads WORKDIR/cell.json,
 // runs the track, streams frames.jsonl and writes sequence.json, plugin.json and result.json. It runs
 // plugin code, so nothing it writes is trusted by the supervisor (cell_supervisor.cpp).
-#include "run/track.hpp"
 #include "sweep/cell_runner.hpp"
+#include "track/track.hpp"
 #include "util/files.hpp"
 #include "util/subprocess.hpp"
 

@@ -20,9 +20,8 @@ namespace {
 // True when `dir` holds a complete sequence from this generator version.
 bool rendered(const fs::path& dir) {
     if (!fs::exists(dir / "synth.json") || !fs::exists(dir / "groundtruth.txt")) return false;
-    std::ifstream in(dir / "synth.json");
-    const nlohmann::json meta = nlohmann::json::parse(in, nullptr, false);
-    return !meta.is_discarded() && meta.value("generator_version", 0) == synth::kGeneratorVersion;
+    const nlohmann::json meta = read_json_or_null(dir / "synth.json");
+    return meta.is_object() && meta.contains("generator_version") && meta["generator_version"] == synth::kGeneratorVersion;
 }
 
 // The folder name holds every parameter that defines the sequence, so a cached one is reused only
@@ -103,14 +102,14 @@ std::vector<SequenceRef> prepare_sequences(const DatasetSpec& d, const PluginReg
 }
 
 std::string dataset_checksum(const fs::path& sequence, const fs::path& memo_file) {
-    nlohmann::json memo = nlohmann::json::object();
-    if (std::ifstream in(memo_file); in) {
-        memo = nlohmann::json::parse(in, nullptr, false);
-        if (memo.is_discarded() || !memo.is_object()) memo = nlohmann::json::object();
-    }
+    nlohmann::json memo = read_json_or_null(memo_file);
+    if (!memo.is_object()) memo = nlohmann::json::object();
     const std::string key = fs::absolute(sequence).lexically_normal().string();
     const std::string signature = signature_of(sequence);
-    if (memo.contains(key) && memo[key].value("signature", "") == signature) return memo[key].value("checksum", "");
+    // The memo is a file like any other: an entry of the wrong shape is recomputed.
+    if (memo.contains(key) && memo[key].is_object() && memo[key].value("signature", nlohmann::json()) == signature &&
+        memo[key].contains("checksum") && memo[key]["checksum"].is_string())
+        return memo[key]["checksum"];
     Hasher h;
     hash_tree(h, sequence);
     const std::string checksum = h.hex();

@@ -31,9 +31,7 @@ std::vector<std::string> read_lines(const fs::path& file) {
 }
 
 nlohmann::json read_jobs(const fs::path& out) {
-    std::ifstream in(out / "slurm" / "jobs.json");
-    if (!in) return nlohmann::json::array();
-    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    const nlohmann::json j = read_json_or_null(out / "slurm" / "jobs.json");
     return j.is_array() ? j : nlohmann::json::array();
 }
 
@@ -204,10 +202,10 @@ SweepTally follow_slurm(const fs::path& out_in, int poll_s) {
         for (std::size_t k = 0; k < ids.size(); ++k) {
             ++tally.cells;
             if (cell_finished(out, ids[k])) {
-                std::ifstream in(out / "runs" / ids[k] / "run.json");
-                const nlohmann::json run = nlohmann::json::parse(in, nullptr, false);
-                if (!run.is_discarded() && run.value("status", "") != "ok") ++tally.failed;
-                tally.frames += run.is_discarded() ? 0 : run.value("frames", uint64_t{0});
+                // cell_finished() validated the record: status and frames are there and typed.
+                const nlohmann::json run = read_json_or_null(out / "runs" / ids[k] / "run.json");
+                if (run["status"] != "ok") ++tally.failed;
+                tally.frames += run["frames"].get<uint64_t>();
                 ++tally.ran;
                 continue;
             }

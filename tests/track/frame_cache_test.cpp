@@ -1,7 +1,7 @@
-#include "run/frame_cache.hpp"
-#include "run/track.hpp"
+#include "track/frame_cache.hpp"
 #include "synth/sequence_writer.hpp"
 #include "test_support.hpp"
+#include "track/track.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -1,8 +1,8 @@
-#include "run/track.hpp"
+#include "track/track.hpp"
 
 #include "metrics/trajectory_io.hpp"
-#include "run/frame_cache.hpp"
-#include "run/frame_prefetcher.hpp"
+#include "track/frame_cache.hpp"
+#include "track/frame_prefetcher.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
 

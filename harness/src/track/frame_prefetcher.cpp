@@ -1,6 +1,6 @@
-#include "run/frame_prefetcher.hpp"
+#include "track/frame_prefetcher.hpp"
 
-#include "run/frame_cache.hpp"
+#include "track/frame_cache.hpp"
 
 namespace vobench {
 

@@ -10,7 +10,7 @@
 #pragma once
 
 #include "abi/instances.hpp"
-#include "run/frame_prefetcher.hpp"
+#include "track/frame_prefetcher.hpp"
 
 #include <filesystem>
 #include <memory>

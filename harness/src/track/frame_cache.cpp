@@ -1,4 +1,4 @@
-#include "run/frame_cache.hpp"
+#include "track/frame_cache.hpp"
 
 #include "metrics/trajectory_io.hpp"
 #include "util/files.hpp"
