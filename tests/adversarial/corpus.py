@@ -416,10 +416,10 @@ def results_faults(args, w):
     # Stored metrics that do not match the trajectory.
     d = fresh("tampered")
     j = load_json(run_json(d, ids[0]))
-    j["metrics"]["ate.rmse"] = 1e-9
+    j["metrics"]["ate.rmse"] += 0.01  # a clear change whatever the true value (the healthy cell's is 0)
     write(run_json(d, ids[0]), json.dumps(j))
     r = report(d)
-    check("results: a tampered metric is caught ('run.json says …, its trajectory gives …', exit 2)",
+    check("results: a tampered metric (+1 cm) is caught ('run.json says …, its trajectory gives …', exit 2)",
           r.returncode == 2 and "run.json says ate.rmse" in r.stdout, r.stdout[-600:])
 
     d = fresh("short_trajectory")

@@ -1,4 +1,4 @@
-// vobench run / report / cell-exec — sweeps from a YAML config, isolated cells, and the report.
+// vobench run / report / collect / run-cell — sweeps from a YAML config, isolated cells, and the report.
 #include "cli/commands.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "report/report_writer.hpp"
@@ -172,11 +172,7 @@ void add_run_commands(CLI::App& app, int& exit_code) {
     seq_probe->add_option("result", probe_result)->required();
     seq_probe->callback([&exit_code] { exit_code = sequence_probe_main(probe_reader, probe_path, probe_options, probe_result); });
 
-    // Internal: the child process of one cell (see sweep/cell_runner.hpp).
-    auto* exec = app.add_subcommand("cell-exec", "")->group("");
-    static std::string work_dir;
-    exec->add_option("work_dir", work_dir)->required();
-    exec->callback([&exit_code] { exit_code = exec_cell(work_dir); });
+    // Internal: the child process of one cell runs in vobench-worker (cli/worker_main.cpp).
 }
 
 }  // namespace vobench::cli

@@ -16,7 +16,7 @@ void add_eval_command(CLI::App& app, int& exit_code);
 void add_traj_command(CLI::App& app, int& exit_code);
 void add_data_command(CLI::App& app, int& exit_code);
 void add_synth_command(CLI::App& app, int& exit_code);
-void add_run_commands(CLI::App& app, int& exit_code);  // run, report, cell-exec
+void add_run_commands(CLI::App& app, int& exit_code);  // run, report, collect, run-cell, sequence-probe
 void add_gt_commands(CLI::App& app, int& exit_code);   // gt compare, gt fuse
 void add_new_plugin_command(CLI::App& app, int& exit_code);
 

@@ -188,7 +188,7 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
         limits.log = work / "child.log";
         limits.cancel = cancel;
         limits.contain = true;
-        child = run_self_limited({"cell-exec", work.string()}, limits);
+        child = run_worker_limited({"cell-exec", work.string()}, limits);
         ran = true;
         if (child.cancelled) {  // the user stopped the sweep: not a result, the cell stays to do
             fs::remove_all(work);
@@ -233,11 +233,7 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
         const bool has_gt = unsigned_field(sequence, "gt_count") > 0;
         if (o.reason.empty() && has_gt && metrics.empty()) o.reason = "the run could not be evaluated: " + evaluation_error;
     }
-    o.ok = o.reason.empty();
-    if (!o.ok) {  // a failed row ranks nothing: no metric of it is kept
-        for (auto& [name, value] : metrics)
-            if (!std::isfinite(value)) value = 0;  // JSON has no NaN; the row's status says it is not a result
-    }
+    o.ok = o.reason.empty();  // a failed row keeps no metrics (below): it ranks nothing
     const nlohmann::json timing = timing_summary(frames, result, child);
 
     nlohmann::json run{

@@ -5,6 +5,7 @@
 #include "synth/trajectory_families.hpp"
 #include "util/files.hpp"
 #include "util/hash.hpp"
+#include "util/subprocess.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -39,17 +40,32 @@ fs::path ensure_rendered(const SyntheticSpec& spec, const std::string& trajector
         return dir;
     }
     if (!render) return dir;
-    synth::SynthOptions o;
-    o.sensor = sensor;
-    o.trajectory = trajectory;
-    o.frames = spec.frames;
-    o.seed = spec.seed;
-    o.out = dir.string() + ".partial";  // renamed into place only when complete
-    fs::remove_all(o.out);
-    const auto report = synth::synthesize(o);
+    // Rendered by vobench-worker (OpenCV and TBB live there), with `vobench synth`'s defaults.
+    const fs::path partial = dir.string() + ".partial";  // renamed into place only when complete
+    fs::remove_all(partial);
+    fs::create_directories(partial.parent_path());
+    spdlog::info("rendering {} …", dir.string());
+    ChildLimits limits;
+    limits.timeout_s = 24 * 3600;
+    limits.log = partial.string() + ".log";
+    const ChildResult child =
+        run_worker_limited({"synth", "--sensor", sensor, "--trajectory", trajectory, "--frames", std::to_string(spec.frames), "--seed",
+                            std::to_string(spec.seed), "--out", partial.string()},
+                           limits);
+    if (!(child.exited && child.exit_code == 0) || !rendered(partial)) {
+        std::string log;
+        try {
+            log = read_file(limits.log);
+        } catch (const std::exception&) {}
+        throw std::runtime_error(fmt::format("rendering {} failed ({}): {}", dir.string(), child.describe(),
+                                             log.substr(log.size() > 2000 ? log.size() - 2000 : 0)));
+    }
+    std::error_code ec;
+    fs::remove(limits.log, ec);
     fs::remove_all(dir);
-    fs::rename(o.out, dir);
-    spdlog::info("rendered {} ({} frames, {:.1f} frames/s)", dir.string(), report.frames, report.fps());
+    fs::rename(partial, dir);
+    spdlog::info("rendered {} ({} frames, {:.1f} frames/s)", dir.string(), spec.frames,
+                 static_cast<double>(spec.frames) / std::max(child.wall_s, 1e-9));
     return dir;
 }
 

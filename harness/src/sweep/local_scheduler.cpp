@@ -102,7 +102,8 @@ std::atomic<bool> g_interrupted{false};
 // kill(-1, …)) fails that cell and the sweep goes on; from anyone else (Ctrl-C, `kill`) it stops
 // the sweep.
 extern "C" void on_interrupt(int signal, siginfo_t* info, void*) {
-    if (info != nullptr && info->si_code == SI_USER && blame_signal_sender(signal, info->si_pid)) return;
+    // si_code <= 0: sent by a process (kill, sigqueue, tgkill); a terminal's Ctrl-C comes from the kernel.
+    if (info != nullptr && info->si_code <= 0 && blame_signal_sender(signal, info->si_pid)) return;
     g_interrupted = true;
 }
 

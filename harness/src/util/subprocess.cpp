@@ -293,10 +293,25 @@ void take_output(ChildResult& result, const fs::path& log) {
 
 }  // namespace
 
-ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
+fs::path self_executable() {
     // $VOBENCH_EXECUTABLE: a program that embeds the harness (the test binary) names the CLI to run.
     const char* self = std::getenv("VOBENCH_EXECUTABLE");
-    std::vector<std::string> argv{self && *self ? std::string(self) : boost::dll::program_location().string()};
+    return self && *self ? fs::path(self) : fs::path(boost::dll::program_location().string());
+}
+
+fs::path worker_executable() {
+    const char* worker = std::getenv("VOBENCH_WORKER");
+    return worker && *worker ? fs::path(worker) : self_executable().parent_path() / "vobench-worker";
+}
+
+ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
+    std::vector<std::string> argv{self_executable().string()};
+    argv.insert(argv.end(), args.begin(), args.end());
+    return spawn_limited(argv, limits, false);
+}
+
+ChildResult run_worker_limited(const std::vector<std::string>& args, const ChildLimits& limits) {
+    std::vector<std::string> argv{worker_executable().string()};
     argv.insert(argv.end(), args.begin(), args.end());
     return spawn_limited(argv, limits, false);
 }

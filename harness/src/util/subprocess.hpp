@@ -70,6 +70,14 @@ uint64_t peak_resident_kb(const std::string& pid);
 // binary that embeds the harness names the CLI). Throws std::runtime_error if it cannot start.
 ChildResult run_self_limited(const std::vector<std::string>& args, const ChildLimits& limits);
 
+// The vobench CLI this process counts as ($VOBENCH_EXECUTABLE, else this executable).
+std::filesystem::path self_executable();
+// vobench-worker, which runs the commands that need OpenCV and TBB (synth, cell-exec):
+// $VOBENCH_WORKER, else beside self_executable().
+std::filesystem::path worker_executable();
+// As run_self_limited, for vobench-worker.
+ChildResult run_worker_limited(const std::vector<std::string>& args, const ChildLimits& limits);
+
 // Runs another program (looked up on PATH) with output captured into ChildResult::output.
 // Throws std::runtime_error if it cannot start.
 ChildResult run_program(const std::vector<std::string>& argv, int timeout_s);
