@@ -422,6 +422,12 @@ def results_faults(args, w):
     check("results: a tampered metric (+1 cm) is caught ('run.json says …, its trajectory gives …', exit 2)",
           r.returncode == 2 and "run.json says ate.rmse" in r.stdout, r.stdout[-600:])
 
+    r = run([args.vobench, "report", "--re-evaluate", d])
+    cells = {c["id"]: c for e in load_json(os.path.join(d, "leaderboard.json"))["entries"] for c in e["cells"]}
+    truth = load_json(run_json(src, ids[0]))["metrics"]["ate.rmse"]
+    check("results: `report --re-evaluate` recomputes every cell and reports the trajectory's value (exit 0)",
+          r.returncode == 0 and abs(cells[ids[0]]["metrics"]["ate.rmse"] - truth) < 1e-12, f"exit {r.returncode}: {r.stdout[-400:]}")
+
     d = fresh("short_trajectory")
     t = os.path.join(d, "runs", ids[0], "trajectory.txt")
     lines = open(t).read().splitlines()

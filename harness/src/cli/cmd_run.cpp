@@ -131,10 +131,13 @@ void add_run_commands(CLI::App& app, int& exit_code) {
 
     auto* report = app.add_subcommand("report", "Rebuild tables, leaderboard, figures and report.html from DIR/runs alone");
     static std::string report_dir;
+    static bool re_evaluate = false;
     report->add_option("dir", report_dir, "A sweep's output folder")->required()->check(CLI::ExistingDirectory);
+    report->add_flag("--re-evaluate", re_evaluate,
+                     "Recompute every cell's metrics from its trajectory (default: run.json's, checked where a figure is drawn)");
     report->callback([&exit_code] {
         const FolderLock lock(report_dir);
-        const ReportResult r = write_report(report_dir);
+        const ReportResult r = write_report(report_dir, re_evaluate);
         print_report(r, report_dir);
         exit_code = report_status(r, true);
     });

@@ -1,5 +1,6 @@
 #include "record/run_record.hpp"
 
+#include "metrics/metric_catalog.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "record/results_dir.hpp"
 #include "util/escape.hpp"
@@ -42,24 +43,29 @@ MetricMap evaluate_run_files(const fs::path& dir, const metrics::Protocol& proto
 
 namespace {
 
-// Why an "ok" record's stored metrics are not what its files give, or "".
-std::string stored_metrics_problem(const RunRecord& r) {
-    for (const auto& [name, value] : r.metrics)
-        if (!std::isfinite(value)) return "the metric " + name + " is not finite";
+// Why an "ok" record's stored metrics are not usable, or "": a value that is not a finite number, a
+// name outside the catalogue, or (where `recomputed` is given) a value its trajectory does not give.
+std::string stored_metrics_problem(const RunRecord& r, const MetricMap* recomputed) {
     const nlohmann::json stored = r.run.value("metrics", nlohmann::json::object());
     if (!stored.is_object()) return "run.json's metrics are not an object";
     for (const auto& [name, v] : stored.items()) {
-        const auto it = r.metrics.find(name);
-        if (it == r.metrics.end()) continue;  // timing entries are rebuilt from run.json itself
-        if (!v.is_number() || std::abs(v.get<double>() - it->second) > 1e-9 * std::max(1.0, std::abs(it->second)))
+        if (!metrics::find_metric(name)) return "run.json names an unknown metric '" + clean_text(name) + "'";
+        if (!v.is_number() || !std::isfinite(v.get<double>())) return "the metric " + name + " is not a finite number";
+        if (!recomputed) continue;
+        const auto it = recomputed->find(name);
+        if (it == recomputed->end()) return "run.json has " + name + ", its trajectory gives none";
+        if (std::abs(v.get<double>() - it->second) > 1e-9 * std::max(1.0, std::abs(it->second)))
             return fmt::format("run.json says {} = {}, its trajectory gives {:.17g}", name, v.dump(), it->second);
     }
+    if (recomputed)
+        for (const auto& [name, value] : *recomputed)
+            if (!stored.contains(name)) return "its trajectory gives " + name + ", run.json has none";
     return "";
 }
 
 }  // namespace
 
-std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* problems) {
+std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* problems, LoadOptions options) {
     std::vector<RunRecord> records;
     const ResultsDir dir(out);
     const auto problem = [&](const std::string& text) {
@@ -87,8 +93,12 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
             const nlohmann::json seq = r.run.value("sequence", nlohmann::json::object());
             if (r.cell.gt_accuracy.position_m < 0) r.cell.gt_accuracy.position_m = seq.value("gt_position_sigma_m", -1.0);
             if (r.cell.gt_accuracy.rotation_deg < 0) r.cell.gt_accuracy.rotation_deg = seq.value("gt_rotation_sigma_deg", -1.0);
-            r.evaluation = evaluate_run(r.dir, r.cell.protocol, r.evaluation_error);
-            if (r.evaluation) r.metrics = metrics::flatten(*r.evaluation);
+            // The numbers are run.json's (a failed row stores none: it ranks nothing); trajectories
+            // are evaluated again below, after sorting.
+            const nlohmann::json stored = r.run.value("metrics", nlohmann::json::object());  // named: items() must not outlive it
+            if (r.ok && stored.is_object())
+                for (const auto& [name, v] : stored.items())
+                    if (metrics::find_metric(name) && v.is_number()) r.metrics[name] = v.get<double>();
             const nlohmann::json& t = r.run.at("timing");
             if (t.value("frames", 0) > 0) {
                 r.metrics["ms_per_frame"] = t.at("mean_ms");
@@ -98,11 +108,10 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
             const double missing = std::max(0.0, r.run.value("frames_expected", 0.0) - r.run.value("frames", 0.0));
             r.metrics["lost_frames"] = lost;
             r.metrics["failed_frames"] = lost + (r.ok ? 0.0 : missing);
-            if (!r.ok)  // a failed row ranks nothing; what it shows (a partial run's ATE) must still be a number
-                for (auto it = r.metrics.begin(); it != r.metrics.end();)
-                    it = std::isfinite(it->second) ? std::next(it) : r.metrics.erase(it);
-            if (r.ok)
-                if (const std::string why = stored_metrics_problem(r); !why.empty()) {
+            // JSON may hold 1e400 (parsed as infinity): a shown number is finite.
+            for (auto it = r.metrics.begin(); it != r.metrics.end();) it = std::isfinite(it->second) ? std::next(it) : r.metrics.erase(it);
+            if (r.ok && !options.re_evaluate)
+                if (const std::string why = stored_metrics_problem(r, nullptr); !why.empty()) {
                     problem(id + ": not shown, " + why + " (" + run_dir.string() + ")");
                     continue;
                 }
@@ -117,7 +126,31 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
         return std::tie(a.cell.dataset, a.cell.sequence, a.cell.sensor, a.cell.algorithm, a.cell.params, a.cell.repeat) <
                std::tie(b.cell.dataset, b.cell.sequence, b.cell.sensor, b.cell.algorithm, b.cell.params, b.cell.repeat);
     });
-    return records;
+    // Trajectories evaluated again: the figure cell of each entry × sequence × sensor (the first
+    // successful one in this order), its stored metrics checked against what it gives; or, with
+    // re_evaluate, every cell, whose metrics then replace the stored ones.
+    std::set<std::string> drawn;
+    std::vector<RunRecord> kept;
+    for (RunRecord& r : records) {
+        const std::string group = r.cell.entry_label() + '\x1f' + r.cell.dataset + '\x1f' + r.cell.sequence + '\x1f' + r.cell.sensor;
+        if (!options.re_evaluate && !(r.ok && drawn.insert(group).second)) {
+            kept.push_back(std::move(r));
+            continue;
+        }
+        r.evaluation = evaluate_run(r.dir, r.cell.protocol, r.evaluation_error);
+        MetricMap recomputed;
+        if (r.evaluation) recomputed = metrics::flatten(*r.evaluation);
+        if (options.re_evaluate) {
+            for (const auto& [name, value] : recomputed)
+                if (std::isfinite(value)) r.metrics[name] = value;
+        } else if (const std::string why = stored_metrics_problem(r, &recomputed); !why.empty()) {
+            problem(r.cell.id + ": not shown, " + why + " (" + r.dir.string() + ")");
+            drawn.erase(group);  // the next successful cell of the group draws its figure
+            continue;
+        }
+        kept.push_back(std::move(r));
+    }
+    return kept;
 }
 
 }  // namespace vobench

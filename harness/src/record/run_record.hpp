@@ -26,8 +26,8 @@ struct RunRecord {
     bool ok = false;
     std::string reason;                             // failure reason
     bool partial = false;                           // stopped early: trajectory holds the frames before the failure
-    MetricMap metrics;                              // accuracy (when evaluable) and timing
-    std::optional<metrics::Evaluation> evaluation;  // per-pair errors, for the figures
+    MetricMap metrics;                              // accuracy (run.json's, unless re-evaluated) and timing
+    std::optional<metrics::Evaluation> evaluation;  // per-pair errors, for the figures (see LoadOptions)
     std::string evaluation_error;
     // Identity of the table entry this run belongs to (algorithm + parameters).
     std::string entry() const { return cell.entry_label(); }
@@ -41,10 +41,20 @@ std::optional<metrics::Evaluation> evaluate_run(const std::filesystem::path& dir
 MetricMap evaluate_run_files(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error,
                              nlohmann::json* full = nullptr);
 
+struct LoadOptions {
+    // false (default): the metrics are run.json's, the one source of the numbers; a trajectory is
+    // evaluated again only where a figure needs its per-pair errors (the first successful cell of
+    // each entry × sequence × sensor), and those cells' stored metrics must equal what it gives.
+    // true (`vobench report --re-evaluate`, after changing a protocol): every cell is evaluated again
+    // with its recorded protocol, and those metrics are reported.
+    bool re_evaluate = false;
+};
+
 // Every sound record under `out`/runs in the expansion order (dataset, sequence, sensor, algorithm,
 // variant, repeat). A record that is not sound (record_problem(), an unreadable cell, an "ok" record
-// whose stored metrics differ from what its trajectory gives, or are not finite) is left out and
-// named in `problems`, as is every cell of cells.json that has no record. Never throws for a record.
-std::vector<RunRecord> load_runs(const std::filesystem::path& out, std::vector<std::string>* problems = nullptr);
+// whose stored metrics are not finite or differ from what its trajectory gives where it is evaluated
+// again) is left out and named in `problems`, as is every cell of cells.json that has no record.
+// Never throws for a record.
+std::vector<RunRecord> load_runs(const std::filesystem::path& out, std::vector<std::string>* problems = nullptr, LoadOptions options = {});
 
 }  // namespace vobench

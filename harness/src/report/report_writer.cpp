@@ -36,14 +36,16 @@ std::string protocol_text(const nlohmann::json& p) {
 
 }  // namespace
 
-ReportResult write_report(const fs::path& out) {
+ReportResult write_report(const fs::path& out, bool re_evaluate) {
     nlohmann::json sweep = read_json_or_null(out / "sweep.json", 16 << 20);
     if (!sweep.is_object()) {
         if (fs::exists(out / "sweep.json")) spdlog::warn("{}: unreadable, using defaults", (out / "sweep.json").string());
         sweep = nlohmann::json::object();
     }
     std::vector<std::string> problems;
-    const std::vector<RunRecord> records = load_runs(out, &problems);
+    LoadOptions load;
+    load.re_evaluate = re_evaluate;
+    const std::vector<RunRecord> records = load_runs(out, &problems, load);
     if (records.empty())
         throw std::runtime_error((out / "runs").string() + ": no finished cells to report" +
                                  (problems.empty() ? std::string() : " (" + std::to_string(problems.size()) + " missing or unsound)"));

@@ -19,6 +19,7 @@ struct ReportResult {
 };
 
 // Throws std::runtime_error when there is no sound record at all.
-ReportResult write_report(const std::filesystem::path& out);
+// `re_evaluate`: every cell's metrics recomputed from its trajectory (record/run_record.hpp LoadOptions).
+ReportResult write_report(const std::filesystem::path& out, bool re_evaluate = false);
 
 }  // namespace vobench
