@@ -38,7 +38,7 @@ namespace {
 
 struct Line {
     std::size_t number;
-    std::vector<std::string> fields;
+    std::vector<std::string_view> fields;  // views into the text split_lines() was given: it must outlive them
 };
 
 // Splits text into non-comment lines of fields separated by any of `separators`. One pass over the
@@ -74,16 +74,17 @@ std::vector<Line> split_lines(const std::string& text, const char* separators) {
 
 // strtod's value and acceptance, faster: std::from_chars first (correctly rounded, as glibc's strtod,
 // so the same double), strtod for what it does not take whole ("+1", hex, out of range).
-double parse_double(const std::string& f, bool& whole) {
+double parse_double(std::string_view f, bool& whole) {
     double v = 0;
     const auto [ptr, ec] = std::from_chars(f.data(), f.data() + f.size(), v);
     if (ec == std::errc() && ptr == f.data() + f.size()) {
         whole = true;
         return v;
     }
+    const std::string text(f);
     char* end = nullptr;
-    v = std::strtod(f.c_str(), &end);
-    whole = end == f.c_str() + f.size();
+    v = std::strtod(text.c_str(), &end);
+    whole = end == text.c_str() + text.size();
     return v;
 }
 
@@ -117,7 +118,7 @@ public:
             warn(line.number, "extra-columns", "values past the first " + std::to_string(count) + " are ignored");
         out.resize(count);
         for (std::size_t i = 0; i < count; ++i) {
-            const std::string& f = line.fields[i];
+            const std::string_view f = line.fields[i];
             bool whole = false;
             out[i] = parse_double(f, whole);
             if (!whole) fail(line.number, fmt::format("value {} ('{}') is not a number", i + 1, f));
@@ -246,14 +247,15 @@ void parse_euroc(const std::string& text, Reader& r) {
         // A header without '#': skip it if its first field is not a number.
         if (first) {
             first = false;
+            const std::string first_field(line.fields[0]);
             char* end = nullptr;
-            std::strtod(line.fields[0].c_str(), &end);
-            if (end == line.fields[0].c_str()) continue;
+            std::strtod(first_field.c_str(), &end);
+            if (end == first_field.c_str()) continue;
         }
         Line trimmed = line;
-        for (std::string& f : trimmed.fields) {
+        for (std::string_view& f : trimmed.fields) {
             const auto b = f.find_first_not_of(" \t"), e = f.find_last_not_of(" \t");
-            f = b == std::string::npos ? "" : f.substr(b, e - b + 1);
+            f = b == std::string_view::npos ? std::string_view() : f.substr(b, e - b + 1);
         }
         if (trimmed.fields.size() > 8) trimmed.fields.resize(8);  // velocities and biases follow
         r.numbers(trimmed, 8, v);
@@ -312,7 +314,8 @@ ReadResult read_trajectory(const fs::path& path, const ReadOptions& options) {
 Eigen::Isometry3d read_camera_in_marker(const fs::path& path) {
     ReadOptions options;
     Reader r(path.string(), options);
-    const std::vector<Line> lines = split_lines(read_text(path), " \t,");
+    const std::string text = read_text(path);  // named: the lines view into it
+    const std::vector<Line> lines = split_lines(text, " \t,");
     if (lines.empty()) throw TrajectoryError(path.string() + ": no pose (expected `x y z qw qx qy qz`)");
     std::vector<double> v;
     r.numbers(lines.front(), 7, v);
