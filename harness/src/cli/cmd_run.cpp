@@ -6,6 +6,7 @@
 #include "sweep/local_scheduler.hpp"
 #include "sweep/sequence_probe.hpp"
 #include "sweep/slurm_backend.hpp"
+#include "sweep/sweep_run.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
 #include "util/folder_lock.hpp"
@@ -93,28 +94,19 @@ void add_run_commands(CLI::App& app, int& exit_code) {
             exit_code = 0;
             return;
         }
-        const std::string chosen = backend.empty() ? config.backend : backend;
+        SweepRunOptions ro;
+        ro.sweep = o;
+        ro.backend = backend.empty() ? config.backend : backend;
+        ro.slurm = slurm;
+        ro.detach = detach;
         const FolderLock lock(o.out);  // one writer per folder, until the report is written
-        prepare_output(cells, o);
-        write_json_atomic(o.out / "sweep.json", sweep_record(config));
-        nlohmann::json list = nlohmann::json::array();
-        for (const Cell& c : cells) list.push_back(cell_to_json(c));
-        write_file_atomic(o.out / "cells.json", json_text(list, 1) + "\n");
-        SweepTally t;
-        if (chosen == "slurm") {
-            spdlog::info("{}: {} cells on Slurm, output {}", config.file.string(), cells.size(), o.out.string());
-            const std::string job = submit_slurm(pending_cells(cells, o), o.out, slurm, config.limits.threads);
-            if (job.empty()) spdlog::info("every cell is finished; nothing to submit");
-            if (detach) {
-                std::cout << fmt::format("Submitted Slurm job {}. When it ends: vobench collect {}\n", job, o.out.string());
-                exit_code = 0;
-                return;
-            }
-            t = follow_slurm(o.out, slurm.poll_s);
-        } else {
-            spdlog::info("{}: {} cells, -j {}, output {}", config.file.string(), cells.size(), o.jobs, o.out.string());
-            t = run_local(cells, o);
+        const SweepRun sweep = run_sweep(config, cells, ro);
+        if (sweep.detached) {
+            std::cout << fmt::format("Submitted Slurm job {}. When it ends: vobench collect {}\n", sweep.slurm_job, o.out.string());
+            exit_code = 0;
+            return;
         }
+        const SweepTally& t = sweep.tally;
         if (t.interrupted) {
             spdlog::warn(
                 "interrupted: {} cells finished and kept, the running ones discarded; continue with: vobench run {} --out {} --resume",

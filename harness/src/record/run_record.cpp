@@ -2,6 +2,7 @@
 
 #include "metrics/metric_catalog.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "record/host_info.hpp"
 #include "record/results_dir.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
@@ -64,6 +65,29 @@ std::string stored_metrics_problem(const RunRecord& r, const MetricMap* recomput
 }
 
 }  // namespace
+
+void write_run_record(const fs::path& dir, const RunRecordFields& f) {
+    const nlohmann::json run{
+        {"schema_version", 1},
+        {"cell", cell_to_json(f.cell)},
+        {"status", f.ok ? "ok" : "failed"},
+        {"reason", f.reason},
+        {"failed_at_frame", f.ok ? nlohmann::json(nullptr) : nlohmann::json(f.frames)},
+        {"partial", !f.ok && f.frames > 0},
+        {"frames", f.frames},
+        {"frames_expected", f.frames_expected},
+        {"lost_frames", f.lost_frames},
+        {"plugin", f.plugin},
+        {"sequence", f.sequence},
+        {"host", host_info()},
+        {"started", f.started},
+        {"finished", f.finished},
+        {"child", {{"outcome", f.child_outcome}, {"log", "child.log"}, {"processes_left_behind", f.processes_left_behind}}},
+        {"timing", f.timing},
+        {"metrics", f.ok ? nlohmann::json(f.metrics) : nlohmann::json::object()},
+        {"evaluation", f.evaluation}};
+    write_json_atomic(dir / "run.json", run);
+}
 
 std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* problems, LoadOptions options) {
     std::vector<RunRecord> records;

@@ -41,6 +41,27 @@ std::optional<metrics::Evaluation> evaluate_run(const std::filesystem::path& dir
 MetricMap evaluate_run_files(const std::filesystem::path& dir, const metrics::Protocol& protocol, std::string& error,
                              nlohmann::json* full = nullptr);
 
+// Everything a finished cell's record holds, as the supervisor established it.
+struct RunRecordFields {
+    Cell cell;
+    bool ok = false;
+    std::string reason;            // "" when ok
+    uint64_t frames = 0;           // poses recorded
+    uint64_t frames_expected = 0;  // what the reader declared (capped by the cell's frame limit)
+    uint64_t lost_frames = 0;
+    nlohmann::json plugin = nlohmann::json::object(), sequence = nlohmann::json::object();
+    std::string started, finished;
+    std::string child_outcome;  // "exited with code 0", "not started", …
+    std::size_t processes_left_behind = 0;
+    nlohmann::json timing = nlohmann::json::object();
+    MetricMap metrics;          // kept only when ok: a failed row ranks nothing
+    nlohmann::json evaluation;  // evaluation_json, or {"error": …}
+};
+
+// Writes `dir`/run.json (schemas/run.schema.json) atomically; the reading side is load_runs() below
+// and record_problem() (record/results_dir.hpp). Throws std::runtime_error when it cannot be written.
+void write_run_record(const std::filesystem::path& dir, const RunRecordFields& fields);
+
 struct LoadOptions {
     // false (default): the metrics are run.json's, the one source of the numbers; a trajectory is
     // evaluated again only where a figure needs its per-pair errors (the first successful cell of

@@ -236,28 +236,24 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     o.ok = o.reason.empty();  // a failed row keeps no metrics (below): it ranks nothing
     const nlohmann::json timing = timing_summary(frames, result, child);
 
-    nlohmann::json run{
-        {"schema_version", 1},
-        {"cell", cell_to_json(cell)},
-        {"status", o.ok ? "ok" : "failed"},
-        {"reason", o.reason},
-        {"failed_at_frame", o.ok ? nlohmann::json(nullptr) : nlohmann::json(frames.frames.size())},
-        {"partial", !o.ok && !frames.frames.empty()},
-        {"frames", frames.frames.size()},
-        {"frames_expected", unsigned_field(sequence, "frames_to_run")},
-        {"lost_frames", frames.lost_frames},
-        {"plugin", plugin},
-        {"sequence", sequence},
-        {"host", host_info()},
-        {"started", started},
-        {"finished", utc_now_iso()},
-        {"child",
-         {{"outcome", ran ? child.describe() : "not started"}, {"log", "child.log"}, {"processes_left_behind", child.left_behind}}},
-        {"timing", timing},
-        {"metrics", o.ok ? nlohmann::json(metrics) : nlohmann::json::object()},
-        {"evaluation", evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}}}};
+    RunRecordFields record;
+    record.cell = cell;
+    record.ok = o.ok;
+    record.reason = o.reason;
+    record.frames = frames.frames.size();
+    record.frames_expected = unsigned_field(sequence, "frames_to_run");
+    record.lost_frames = frames.lost_frames;
+    record.plugin = plugin;
+    record.sequence = sequence;
+    record.started = started;
+    record.finished = utc_now_iso();
+    record.child_outcome = ran ? child.describe() : "not started";
+    record.processes_left_behind = child.left_behind;
+    record.timing = timing;
+    record.metrics = metrics;
+    record.evaluation = evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}};
     if (fs::exists(work / "child.log")) keep_log_tail(work / "child.log", 64 * 1024);
-    write_json_atomic(work / "run.json", run);  // last: its presence marks the cell finished
+    write_run_record(work, record);  // last: its presence marks the cell finished
     fs::remove_all(final_dir);
     fs::rename(work, final_dir);
     o.wall_s = child.wall_s;

@@ -268,7 +268,8 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     if (limits.contain) {
         const bool killed_by_us =
             result.timed_out || result.memory_exceeded || result.cancelled || result.signal_blame || result.log_exceeded;
-        ::kill(-pid, SIGKILL);
+        // Counted before anything is killed (a killed leftover is a zombie by the time it is looked at),
+        // then every member killed and reaped: kill_members does both, in that order.
         const std::size_t running = kill_members(pid, tag);
         if (!killed_by_us) result.left_behind = running;
         if (slot) slot->leader = 0;
