@@ -1,15 +1,12 @@
 // vobench — the command-line host. See `vobench --help`.
+#include "cli/app_setup.hpp"
 #include "cli/commands.hpp"
+#include "util/subprocess.hpp"
 
 #include <vobench/vobench_plugin.h>
 
-#include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
-
 #include <fcntl.h>
 #include <unistd.h>
-#include "util/subprocess.hpp"
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -69,21 +66,11 @@ int main(int argc, char** argv) {
         return 1;
     }
     own_stdout();
-    // Logs go to stderr so that --json output on stdout stays machine-readable.
-    auto logger = spdlog::stderr_color_mt("vobench");
-    spdlog::set_default_logger(logger);
-    spdlog::set_pattern("[%H:%M:%S.%e] [%^%l%$] %v");
-
     CLI::App app{"vobench — a benchmark harness for RGB-D visual odometry"};
     app.require_subcommand(0, 1);
     app.set_version_flag("--version", std::string("vobench ") + VOBENCH_VERSION + " (plugin ABI " + std::to_string(VOBENCH_ABI_VERSION) +
                                           ", API " + std::to_string(VOBENCH_API_VERSION) + ")");
-    bool verbose = false, quiet = false;
-    app.add_flag("-v,--verbose", verbose, "More log output");
-    app.add_flag("-q,--quiet", quiet, "Only warnings and errors");
-    app.parse_complete_callback([&] {
-        spdlog::set_level(verbose ? spdlog::level::debug : quiet ? spdlog::level::warn : spdlog::level::info);
-    });
+    vobench::cli::setup_logging(app);
 
     int exit_code = 0;
     vobench::cli::add_plugins_commands(app, exit_code);
@@ -98,15 +85,8 @@ int main(int argc, char** argv) {
     vobench::cli::add_gt_commands(app, exit_code);
     vobench::cli::add_new_plugin_command(app, exit_code);
 
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    } catch (const std::exception& e) {
-        spdlog::error("{}", e.what());
-        return 1;
-    }
+    const int status = vobench::cli::parse_and_run(app, argc, argv, exit_code);
     if (argc == 1) std::cout << app.help();
     std::cout.flush();
-    return exit_code;
+    return status;
 }
