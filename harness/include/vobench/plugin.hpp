@@ -138,6 +138,8 @@ struct PluginInfo {
     std::string license;
     std::string url;
     std::vector<Param> params;
+    // API 3: instances declare more parameters, by the values of some of these (Odometry::extra_params).
+    bool has_extra_params = false;
 };
 
 // Parameter values as given, completed with the table's defaults. Getters throw Error on a name that
@@ -248,6 +250,12 @@ public:
     virtual vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) = 0;
     // Forget the state (default: not supported).
     virtual void reset() { throw Error(VOBENCH_UNSUPPORTED, "this plugin cannot reset"); }
+    // Only when info().has_extra_params: the parameters this instance takes beyond info()'s table, given
+    // the values of that table's own (`given`, completed with defaults). Called at most once, before start().
+    virtual std::vector<Param> extra_params(const Params& given) {
+        (void)given;
+        return {};
+    }
 
     const Host& host() const { return *host_; }
     void attach_host(const Host* host) { host_ = host; }
@@ -264,6 +272,11 @@ public:
     virtual const vobench_sequence_info& describe() = 0;
     // The returned frame must stay valid until the next read_frame() or destruction.
     virtual const vobench_frame& read_frame(uint64_t index) = 0;
+    // As Odometry::extra_params, called before open().
+    virtual std::vector<Param> extra_params(const Params& given) {
+        (void)given;
+        return {};
+    }
 
     const Host& host() const { return *host_; }
     void attach_host(const Host* host) { host_ = host; }
@@ -296,6 +309,24 @@ vobench_status guarded(std::string& error, Body&& body) noexcept {
     }
 }
 
+// The C rows of a parameter table; they point into `table`, which must outlive them.
+inline std::vector<vobench_param_desc> param_descs(const std::vector<Param>& table) {
+    std::vector<vobench_param_desc> out;
+    for (const Param& p : table) {
+        vobench_param_desc d{};
+        d.struct_size = sizeof(vobench_param_desc);
+        d.name = p.name.c_str();
+        d.type = p.type;
+        d.default_value = p.default_value.c_str();
+        d.min_value = p.min_value;
+        d.max_value = p.max_value;
+        d.choices = p.choices.empty() ? nullptr : p.choices.c_str();
+        d.help = p.help.c_str();
+        out.push_back(d);
+    }
+    return out;
+}
+
 // Owns the strings and tables a descriptor points to; built once per plugin class.
 struct DescriptorStore {
     PluginInfo info;
@@ -303,18 +334,7 @@ struct DescriptorStore {
     vobench_plugin_descriptor descriptor{};
 
     DescriptorStore(PluginInfo i, vobench_plugin_kind kind) : info(std::move(i)) {
-        for (const Param& p : info.params) {
-            vobench_param_desc d{};
-            d.struct_size = sizeof(vobench_param_desc);
-            d.name = p.name.c_str();
-            d.type = p.type;
-            d.default_value = p.default_value.c_str();
-            d.min_value = p.min_value;
-            d.max_value = p.max_value;
-            d.choices = p.choices.empty() ? nullptr : p.choices.c_str();
-            d.help = p.help.c_str();
-            params.push_back(d);
-        }
+        params = param_descs(info.params);
         descriptor.struct_size = sizeof(vobench_plugin_descriptor);
         descriptor.abi_version = VOBENCH_ABI_VERSION;
         descriptor.api_version = VOBENCH_API_VERSION;
@@ -335,6 +355,10 @@ struct Instance {
     Host host;
     std::unique_ptr<T> impl;
     std::string error;
+    // API 3: what impl->extra_params() answered (asked once), and its C rows.
+    bool asked = false;
+    std::vector<Param> extra;
+    std::vector<vobench_param_desc> extra_descs;
 };
 
 // What both bridges share: the instance handle, creation, the error message, destruction, and the
@@ -355,8 +379,48 @@ struct BridgeBase {
         }
     }
     static const char* last_error(Handle* h) noexcept { return self(h)->error.c_str(); }
+
+    // Asks impl->extra_params once, with the values of info()'s own parameters among `given`.
+    static void ask_extra(Self* s, const vobench_params* given) {
+        if (s->asked || !store().info.has_extra_params) return;
+        std::vector<const char*> keys, values;
+        for (uint32_t i = 0; given != nullptr && i < given->count; ++i)
+            for (const Param& p : store().info.params)
+                if (given->keys[i] != nullptr && p.name == given->keys[i]) {
+                    keys.push_back(given->keys[i]);
+                    values.push_back(given->values[i]);
+                }
+        const vobench_params own{sizeof(vobench_params), static_cast<uint32_t>(keys.size()), keys.data(), values.data()};
+        s->extra = s->impl->extra_params(Params(store().info.params, &own));
+        s->extra_descs = param_descs(s->extra);
+        s->asked = true;
+    }
+    static vobench_status extra_params(Handle* h, const vobench_params* given, uint32_t* count, const vobench_param_desc** out) noexcept {
+        auto* s = self(h);
+        return guarded(s->error, [&] {
+            if (count == nullptr || out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "extra_params() needs output pointers");
+            ask_extra(s, given);
+            *count = static_cast<uint32_t>(s->extra_descs.size());
+            *out = s->extra_descs.empty() ? nullptr : s->extra_descs.data();
+        });
+    }
+    // The table start()/open() validate against: info()'s and the instance's extra parameters.
+    static Params params_of(Self* s, const vobench_params* given) {
+        ask_extra(s, given);
+        std::vector<Param> table = store().info.params;
+        table.insert(table.end(), s->extra.begin(), s->extra.end());
+        return Params(table, given);
+    }
     static void destroy(Handle* h) noexcept { delete self(h); }
 
+    // info() is plugin code and may throw: then the entry answers NULL (entry_with), and this false.
+    static bool has_extra() noexcept {
+        try {
+            return store().info.has_extra_params;
+        } catch (...) {
+            return false;
+        }
+    }
     static const DescriptorStore& store() {
         static const DescriptorStore s(Impl::info(), Kind);
         return s;
@@ -390,8 +454,7 @@ struct OdometryBridge : BridgeBase<Impl, vobench_odometry, VOBENCH_KIND_ODOMETRY
         return guarded(s->error, [&] {
             if (config == nullptr || config->camera == nullptr)
                 throw Error(VOBENCH_INVALID_ARGUMENT, "start() needs a configuration with a camera");
-            const Params params(Base::store().info.params, config->params);
-            s->impl->start(*config->camera, params, config->seed);
+            s->impl->start(*config->camera, Base::params_of(s, config->params), config->seed);
         });
     }
     static vobench_status process(vobench_odometry* h, const vobench_frame* frame, vobench_pose* pose,
@@ -417,8 +480,14 @@ struct OdometryBridge : BridgeBase<Impl, vobench_odometry, VOBENCH_KIND_ODOMETRY
         return guarded(s->error, [&] { s->impl->reset(); });
     }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        static const vobench_odometry_api table = {
-            sizeof(vobench_odometry_api), &Base::create, &start, &process, &reset, &Base::last_error, &Base::destroy};
+        static const vobench_odometry_api table = {sizeof(vobench_odometry_api),
+                                                   &Base::create,
+                                                   &start,
+                                                   &process,
+                                                   &reset,
+                                                   &Base::last_error,
+                                                   &Base::destroy,
+                                                   Base::has_extra() ? &Base::extra_params : nullptr};
         return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::odometry);
     }
 };
@@ -432,8 +501,7 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
         auto* s = self(h);
         return guarded(s->error, [&] {
             if (path == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "open() needs a path");
-            const Params params(Base::store().info.params, options);
-            s->impl->open(path, params);
+            s->impl->open(path, Base::params_of(s, options));
         });
     }
     static vobench_status describe(vobench_dataset* h, const vobench_sequence_info** out) noexcept {
@@ -451,8 +519,14 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
         });
     }
     static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
-        static const vobench_dataset_api table = {sizeof(vobench_dataset_api), &Base::create, &open, &describe, &read_frame,
-                                                  &Base::last_error,           &Base::destroy};
+        static const vobench_dataset_api table = {sizeof(vobench_dataset_api),
+                                                  &Base::create,
+                                                  &open,
+                                                  &describe,
+                                                  &read_frame,
+                                                  &Base::last_error,
+                                                  &Base::destroy,
+                                                  Base::has_extra() ? &Base::extra_params : nullptr};
         return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::dataset);
     }
 };

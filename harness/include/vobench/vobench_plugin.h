@@ -64,8 +64,10 @@ extern "C" {
 
 #define VOBENCH_ABI_VERSION 1u
 /* API history: 1 — first release; 2 — vobench_sequence_info gains gt_position_sigma_m and
- * gt_rotation_sigma_deg (the reader's declared ground-truth accuracy). */
-#define VOBENCH_API_VERSION 2u
+ * gt_rotation_sigma_deg (the reader's declared ground-truth accuracy); 3 — vobench_dataset_api and
+ * vobench_odometry_api gain extra_params (parameters that depend on other parameters' values, as a
+ * bridge to another language has: the Python bridge's module=FILE declares its own). */
+#define VOBENCH_API_VERSION 3u
 
 /* The name of the one exported function, with the ABI generation in it. */
 #define VOBENCH_ENTRY_SYMBOL "vobench_plugin_entry_v1"
@@ -279,6 +281,14 @@ typedef struct vobench_dataset_api {
     const char* (*last_error)(vobench_dataset* self);
     /* Free everything the instance owns. `self` may be NULL. */
     void (*destroy)(vobench_dataset* self);
+    /* API 3; may be NULL (the descriptor's table is then all there is). The options this instance takes
+     * beyond the descriptor's table, which depend on the values of some of the table's own (`given`:
+     * [host-owned], read during the call; it holds only names of the descriptor's table, already
+     * validated). Called after create() and before open(), at most once per instance. On success *count
+     * and *params ([plugin-owned], valid until destroy(); stride params->struct_size) describe them,
+     * by the rules of the descriptor's table, with names distinct from it. The host validates the options
+     * it passes to open() against both tables. */
+    vobench_status (*extra_params)(vobench_dataset* self, const vobench_params* given, uint32_t* count, const vobench_param_desc** params);
 } vobench_dataset_api;
 
 /* ===== Odometry algorithms ====================================================================== */
@@ -318,6 +328,10 @@ typedef struct vobench_odometry_api {
     const char* (*last_error)(vobench_odometry* self);
     /* Free everything the instance owns. `self` may be NULL. */
     void (*destroy)(vobench_odometry* self);
+    /* API 3; may be NULL. As extra_params of vobench_dataset_api: the parameters beyond the descriptor's
+     * table given the values of some of its own, called after create() and before start(); the host
+     * validates the parameters it passes to start() against both tables. */
+    vobench_status (*extra_params)(vobench_odometry* self, const vobench_params* given, uint32_t* count, const vobench_param_desc** params);
 } vobench_odometry_api;
 
 #ifdef __cplusplus

@@ -65,7 +65,23 @@ struct SyntheticFrame {
     }
 };
 
-void check_odometry(const PluginPtr& plugin, Report& r) {
+// API 3: the parameters an instance declares for the given values, checked like the descriptor's.
+template <typename Instance>
+void check_extra_params(const PluginPtr& plugin, const ParamMap& given, Report& r) {
+    if (!plugin->info().has_extra_params) return;
+    r.step("extra parameters for " + std::to_string(given.size()) + " given value(s)");
+    try {
+        Instance instance(plugin);
+        const PluginInfo& info = instance.params_for(given);
+        r.pass("extra_params gave " + std::to_string(info.params.size() - info.table_size) + " well-formed parameter(s)");
+        for (std::size_t k = info.table_size; k < info.params.size(); ++k)
+            r.check(!info.params[k].help.empty(), "parameter '" + info.params[k].name + "' documented", "no help text");
+    } catch (const std::exception& e) {
+        r.fail("extra parameters", e.what());
+    }
+}
+
+void check_odometry(const PluginPtr& plugin, const ParamMap& given, Report& r) {
     const vobench_odometry_api* api = plugin->descriptor().odometry;
     HostContext host(plugin->name());
     for (int round = 1; round <= 2; ++round) {
@@ -90,12 +106,20 @@ void check_odometry(const PluginPtr& plugin, Report& r) {
                 s == VOBENCH_OK ? "start() accepted it" : "last_error() is empty");
         api->destroy(h);
     }
-    r.step("start with defaults and process 5 synthetic frames");
+    check_extra_params<OdometryInstance>(plugin, given, r);
+    const std::string with = given.empty() ? "defaults" : std::to_string(given.size()) + " given parameter(s)";
+    r.step("start with " + with + " and process 5 synthetic frames");
     vobench_odometry* h = api->create(host.services());
-    vobench_params none{sizeof(vobench_params), 0, nullptr, nullptr};
-    vobench_odometry_config config{sizeof(config), &camera, &none, 1};
+    const ParamView view(given);
+    if (plugin->info().has_extra_params) {  // the host asks before start(), as a cell does
+        uint32_t count = 0;
+        const vobench_param_desc* table = nullptr;
+        const ParamView table_view(table_params(plugin->info(), given));
+        api->extra_params(h, table_view.get(), &count, &table);
+    }
+    vobench_odometry_config config{sizeof(config), &camera, view.get(), 1};
     vobench_status s = api->start(h, &config);
-    r.check(s == VOBENCH_OK, "start with defaults", std::string("status ") + status_name(s) + ": " + message_of(api->last_error(h)));
+    r.check(s == VOBENCH_OK, "start with " + with, std::string("status ") + status_name(s) + ": " + message_of(api->last_error(h)));
     if (s == VOBENCH_OK) {
         for (int k = 0; k < 5; ++k) {
             SyntheticFrame f(k, 2 * k);
@@ -127,6 +151,7 @@ void check_odometry(const PluginPtr& plugin, Report& r) {
 }
 
 void check_dataset(const PluginPtr& plugin, const ConformanceOptions& options, Report& r) {
+    check_extra_params<DatasetInstance>(plugin, options.params, r);
     const vobench_dataset_api* api = plugin->descriptor().dataset;
     HostContext host(plugin->name());
     for (int round = 1; round <= 2; ++round) {
@@ -153,7 +178,7 @@ void check_dataset(const PluginPtr& plugin, const ConformanceOptions& options, R
     r.step("open " + *options.dataset_path);
     try {
         DatasetInstance d(plugin);
-        d.open(*options.dataset_path, {});
+        d.open(*options.dataset_path, options.params);
         const vobench_sequence_info& info = d.info();
         r.check(info.frame_count > 0, "sequence has frames", "frame_count is 0");
         const vobench_camera& cam = *info.camera;
@@ -202,7 +227,7 @@ int run_conformance(const ConformanceOptions& options, std::ostream& out) {
             "it returned NULL for a newer API version");
     for (const sdk::Param& p : plugin->params()) r.check(!p.help.empty(), "parameter '" + p.name + "' documented", "no help text");
     if (d.kind == VOBENCH_KIND_ODOMETRY)
-        check_odometry(plugin, r);
+        check_odometry(plugin, options.params, r);
     else
         check_dataset(plugin, options, r);
     out << (r.failures() == 0 ? "PASS " : "FAIL ") << options.library.string() << " (" << r.failures() << " failures)" << std::endl;
@@ -219,6 +244,10 @@ int check_in_child(const ConformanceOptions& options, std::ostream& out) {
     if (options.dataset_path) {
         args.push_back("--dataset-path");
         args.push_back(*options.dataset_path);
+    }
+    for (const auto& [k, v] : options.params) {
+        args.push_back("--param");
+        args.push_back(k + "=" + v);
     }
     const ChildResult child = run_self(args, options.timeout_s);
     std::string written;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -15,9 +16,10 @@ namespace vobench {
 
 struct ConformanceOptions {
     std::filesystem::path library;
-    std::optional<std::string> dataset_path;  // a sequence to open and read (dataset plugins)
-    int timeout_s = 120;                      // child process only
-    std::filesystem::path verdict_file;       // in-process: "0" or "1" written here after the last step
+    std::optional<std::string> dataset_path;    // a sequence to open and read (dataset plugins)
+    int timeout_s = 120;                        // child process only
+    std::filesystem::path verdict_file;         // in-process: "0" or "1" written here after the last step
+    std::map<std::string, std::string> params;  // for the instances that start or open (e.g. python module=FILE)
 };
 
 // In this process. Returns 0 when every step passes, 1 otherwise.

@@ -36,6 +36,40 @@ void validate_params(const PluginInfo& plugin, const ParamMap& params) {
     }
 }
 
+ParamMap table_params(const PluginInfo& plugin, const ParamMap& params) {
+    ParamMap given;
+    for (std::size_t i = 0; i < plugin.table_size && i < plugin.params.size(); ++i)
+        if (auto it = params.find(plugin.params[i].name); it != params.end()) given.insert(*it);
+    return given;
+}
+
+namespace {
+
+// The table of `library` extended by the instance's answer to extra_params (API 3), for both kinds.
+template <typename Api, typename Handle>
+PluginInfo extended_params(const PluginLibrary& library, const Api* api, Handle* handle, const ParamMap& params) {
+    PluginInfo info = library.info();
+    if (!info.has_extra_params) return info;
+    const ParamMap given = table_params(info, params);
+    validate_params(info, given);
+    const ParamView view(given);
+    uint32_t count = 0;
+    const vobench_param_desc* table = nullptr;
+    const std::string who = "plugin '" + info.name + "': ";
+    if (vobench_status s = api->extra_params(handle, view.get(), &count, &table); s != VOBENCH_OK) {
+        const char* message = api->last_error(handle);
+        throw PluginCallError(who + "extra_params failed (" + status_name(s) + "): " + (message && *message ? message : "no message"), s);
+    }
+    std::vector<std::string> taken;
+    for (const sdk::Param& p : info.params) taken.push_back(p.name);
+    if (const std::string why = check_param_table(count, table, taken); !why.empty())
+        throw PluginCallError(who + "extra_params gave a malformed table: " + why, VOBENCH_ERROR);
+    for (sdk::Param& p : params_of_table(count, table)) info.params.push_back(std::move(p));
+    return info;
+}
+
+}  // namespace
+
 ParamView::ParamView(const ParamMap& params) {
     for (const auto& [k, v] : params) {
         keys_.push_back(k);
@@ -102,8 +136,13 @@ void DatasetInstance::fail(const char* call, vobench_status status) const {
                           status);
 }
 
+const PluginInfo& DatasetInstance::params_for(const ParamMap& options) {
+    if (!params_) params_ = extended_params(*plugin_, api_, handle_, options);
+    return *params_;
+}
+
 void DatasetInstance::open(const std::string& path, const ParamMap& options) {
-    validate_params(plugin_->info(), options);
+    validate_params(params_for(options), options);
     const ParamView view(options);
     if (vobench_status s = api_->open(handle_, path.c_str(), view.get()); s != VOBENCH_OK) fail("open", s);
     if (vobench_status s = api_->describe(handle_, &info_); s != VOBENCH_OK) fail("describe", s);
@@ -149,8 +188,13 @@ std::string OdometryInstance::last_error() const {
     return message && *message ? message : "no message";
 }
 
+const PluginInfo& OdometryInstance::params_for(const ParamMap& params) {
+    if (!params_) params_ = extended_params(*plugin_, api_, handle_, params);
+    return *params_;
+}
+
 void OdometryInstance::start(const vobench_camera& camera, const ParamMap& params, uint64_t seed) {
-    validate_params(plugin_->info(), params);
+    validate_params(params_for(params), params);
     const ParamView view(params);
     vobench_odometry_config config{};
     config.struct_size = sizeof(config);

@@ -11,6 +11,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ private:
 // Checks names, types and ranges against the plugin's table; throws std::invalid_argument naming the
 // plugin and parameter.
 void validate_params(const PluginInfo& plugin, const ParamMap& params);
+
+// The entries of `params` whose names are in the descriptor's own table (the first table_size rows):
+// what a plugin's extra_params() is given.
+ParamMap table_params(const PluginInfo& plugin, const ParamMap& params);
 
 // Keeps strings alive and presents them as vobench_params.
 class ParamView {
@@ -54,6 +59,11 @@ public:
     DatasetInstance(const DatasetInstance&) = delete;
     DatasetInstance& operator=(const DatasetInstance&) = delete;
 
+    // The plugin's parameter table extended by what this instance declares for the values in `options`
+    // (API 3 extra_params; asked once per instance, the answer kept); the plain table otherwise.
+    // Throws PluginCallError when the plugin fails or answers with a malformed table.
+    const PluginInfo& params_for(const ParamMap& options);
+    // Validates `options` against params_for(options), then opens.
     void open(const std::string& path, const ParamMap& options);
     const vobench_sequence_info& info() const { return *info_; }
     // Valid until the next read() or destruction.
@@ -67,6 +77,7 @@ private:
     std::unique_ptr<HostContext> host_;
     vobench_dataset* handle_ = nullptr;
     const vobench_sequence_info* info_ = nullptr;
+    std::optional<PluginInfo> params_;
 };
 
 class OdometryInstance {
@@ -76,6 +87,9 @@ public:
     OdometryInstance(const OdometryInstance&) = delete;
     OdometryInstance& operator=(const OdometryInstance&) = delete;
 
+    // As DatasetInstance::params_for.
+    const PluginInfo& params_for(const ParamMap& params);
+    // Validates `params` against params_for(params), then starts.
     void start(const vobench_camera& camera, const ParamMap& params, uint64_t seed);
     // The raw call, for the timed loop: returns the status, throws nothing. On failure, last_error()
     // has the message.
@@ -93,6 +107,7 @@ private:
     const vobench_odometry_api* api_;
     std::unique_ptr<HostContext> host_;
     vobench_odometry* handle_ = nullptr;
+    std::optional<PluginInfo> params_;
 };
 
 }  // namespace vobench

@@ -34,17 +34,19 @@ sdk::Param param_of(const vobench_param_desc& p) {
             p.help ? clean_text(p.help) : ""};
 }
 
-std::string check_params(const vobench_plugin_descriptor* d) {
-    if (d->param_count == 0) return "";
-    if (d->params == nullptr) return "param_count is " + std::to_string(d->param_count) + " but params is NULL";
-    if (d->params->struct_size < kMinParamSize)
-        return "parameter table struct_size " + std::to_string(d->params->struct_size) + " is smaller than " +
-               std::to_string(kMinParamSize);
-    std::set<std::string> names;
-    for (uint32_t i = 0; i < d->param_count; ++i) {
-        const vobench_param_desc* p = VOBENCH_ARRAY_AT(d->params, vobench_param_desc, i);
+}  // namespace
+
+std::string check_param_table(uint32_t count, const vobench_param_desc* params, const std::vector<std::string>& taken) {
+    if (count == 0) return "";
+    if (params == nullptr) return "param_count is " + std::to_string(count) + " but params is NULL";
+    if (count > 4096) return "param_count is " + std::to_string(count) + " (at most 4096)";
+    if (params->struct_size < kMinParamSize)
+        return "parameter table struct_size " + std::to_string(params->struct_size) + " is smaller than " + std::to_string(kMinParamSize);
+    std::set<std::string> names(taken.begin(), taken.end());
+    for (uint32_t i = 0; i < count; ++i) {
+        const vobench_param_desc* p = VOBENCH_ARRAY_AT(params, vobench_param_desc, i);
         const std::string where = "parameter #" + std::to_string(i);
-        if (p->struct_size != d->params->struct_size) return where + ": struct_size differs from the first entry's";
+        if (p->struct_size != params->struct_size) return where + ": struct_size differs from the first entry's";
         if (!is_identifier(p->name)) return where + ": name is not an identifier [a-z0-9_]+";
         if (!names.insert(p->name).second) return std::string("parameter '") + p->name + "' is declared twice";
         if (p->type < VOBENCH_PARAM_BOOL || p->type > VOBENCH_PARAM_ENUM)
@@ -61,7 +63,11 @@ std::string check_params(const vobench_plugin_descriptor* d) {
     return "";
 }
 
-}  // namespace
+std::vector<sdk::Param> params_of_table(uint32_t count, const vobench_param_desc* params) {
+    std::vector<sdk::Param> out;
+    for (uint32_t i = 0; i < count; ++i) out.push_back(param_of(*VOBENCH_ARRAY_AT(params, vobench_param_desc, i)));
+    return out;
+}
 
 namespace {
 // JSON has no infinity: an unbounded range travels as the string "inf" / "-inf".
@@ -85,9 +91,18 @@ nlohmann::json plugin_info_to_json(const PluginInfo& i) {
                           {"max", bound_to_json(p.max_value)},
                           {"choices", p.choices},
                           {"help", p.help}});
-    return {{"path", i.path.string()},      {"name", i.name},  {"version", i.version}, {"description", i.description},
-            {"license", i.license},         {"url", i.url},    {"kind", i.kind},       {"abi_version", i.abi_version},
-            {"api_version", i.api_version}, {"params", params}};
+    return {{"path", i.path.string()},
+            {"name", i.name},
+            {"version", i.version},
+            {"description", i.description},
+            {"license", i.license},
+            {"url", i.url},
+            {"kind", i.kind},
+            {"abi_version", i.abi_version},
+            {"api_version", i.api_version},
+            {"params", params},
+            {"has_extra_params", i.has_extra_params},
+            {"table_size", i.table_size}};
 }
 
 PluginInfo plugin_info_from_json(const nlohmann::json& j) {
@@ -104,6 +119,9 @@ PluginInfo plugin_info_from_json(const nlohmann::json& j) {
     for (const auto& p : j.at("params"))
         i.params.push_back({p.at("name"), p.at("type"), p.at("default"), bound_from_json(p.at("min")), bound_from_json(p.at("max")),
                             p.at("choices"), p.at("help")});
+    i.has_extra_params = j.value("has_extra_params", false);
+    i.table_size = j.value("table_size", i.params.size());
+    if (i.table_size > i.params.size()) throw std::out_of_range("table_size exceeds the parameter count");
     return i;
 }
 
@@ -127,7 +145,7 @@ std::string validate_descriptor(const vobench_plugin_descriptor* d) {
     if (d->version == nullptr || *d->version == '\0') return "descriptor has no version";
     if (d->description == nullptr) return "descriptor has no description";
     if (d->license == nullptr || *d->license == '\0') return "descriptor has no license";
-    if (std::string why = check_params(d); !why.empty()) return why;
+    if (std::string why = check_param_table(d->param_count, d->params); !why.empty()) return why;
     if (d->kind == VOBENCH_KIND_DATASET) {
         const vobench_dataset_api* t = d->dataset;
         if (t == nullptr) return "dataset plugin without a dataset table";
@@ -188,7 +206,12 @@ std::shared_ptr<const PluginLibrary> PluginLibrary::load(const std::filesystem::
     info.kind = d.kind;
     info.abi_version = d.abi_version;
     info.api_version = d.api_version;
-    for (uint32_t i = 0; i < d.param_count; ++i) info.params.push_back(param_of(*VOBENCH_ARRAY_AT(d.params, vobench_param_desc, i)));
+    info.params = params_of_table(d.param_count, d.params);
+    info.table_size = info.params.size();
+    if (d.kind == VOBENCH_KIND_DATASET)
+        info.has_extra_params = VOBENCH_HAS_FIELD(d.dataset, vobench_dataset_api, extra_params) && d.dataset->extra_params != nullptr;
+    else
+        info.has_extra_params = VOBENCH_HAS_FIELD(d.odometry, vobench_odometry_api, extra_params) && d.odometry->extra_params != nullptr;
     return plugin;
 }
 

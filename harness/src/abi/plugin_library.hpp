@@ -41,7 +41,19 @@ struct PluginInfo {
     vobench_plugin_kind kind = 0;
     uint32_t abi_version = 0, api_version = 0;
     std::vector<sdk::Param> params;
+    // API 3: the plugin's instances declare parameters beyond the descriptor's table, which depend on
+    // the values of some of its own (extra_params). `params` then holds the descriptor's table first
+    // (`table_size` rows) and, once extended for given values (abi/plugin_probe.hpp
+    // probe_extra_params, or an instance's own), the extra parameters after it.
+    bool has_extra_params = false;
+    std::size_t table_size = 0;
 };
+
+// Whether a parameter-table row set, read from plugin code, follows the ABI's rules (identifiers,
+// unique also against `taken`, known types, valid defaults); "" or the first reason it does not.
+std::string check_param_table(uint32_t count, const vobench_param_desc* params, const std::vector<std::string>& taken = {});
+// The rows of such a table as SDK values, their texts cleaned.
+std::vector<sdk::Param> params_of_table(uint32_t count, const vobench_param_desc* params);
 
 nlohmann::json plugin_info_to_json(const PluginInfo& info);
 PluginInfo plugin_info_from_json(const nlohmann::json& j);  // throws nlohmann::json::exception when malformed

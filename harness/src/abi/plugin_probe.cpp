@@ -1,5 +1,6 @@
 #include "abi/plugin_probe.hpp"
 
+#include "abi/instances.hpp"
 #include "util/files.hpp"
 #include "util/hash.hpp"
 #include "util/subprocess.hpp"
@@ -33,22 +34,42 @@ PluginInfo from_answer(const nlohmann::json& answer, const fs::path& file) {
     return info;
 }
 
+std::string params_text(const ParamMap& params) {
+    std::string text;
+    for (const auto& [k, v] : params) text += (text.empty() ? "" : ", ") + k + "=" + v;
+    return text;
+}
+
 }  // namespace
 
-int probe_plugin_main(const fs::path& file, const fs::path& out) {
+int probe_plugin_main(const fs::path& file, const fs::path& out, const ParamMap& given, bool extend) {
     nlohmann::json answer;
     try {
-        answer = {{"info", plugin_info_to_json(PluginLibrary::load(file)->info())}};
+        const PluginPtr library = PluginLibrary::load(file);
+        PluginInfo info = library->info();
+        if (extend && info.has_extra_params) {
+            if (info.kind == VOBENCH_KIND_DATASET)
+                info = DatasetInstance(library).params_for(given);
+            else
+                info = OdometryInstance(library).params_for(given);
+        }
+        answer = {{"info", plugin_info_to_json(info)}};
     } catch (const PluginLoadError& e) {
         // The loader's messages start with the path; the parent adds it back.
         std::string why = e.what();
         if (why.rfind(file.string() + ": ", 0) == 0) why.erase(0, file.string().size() + 2);
         answer = {{"refused", why}};
+    } catch (const PluginCallError& e) {
+        answer = {{"refused", e.what()}};
+    } catch (const std::invalid_argument& e) {
+        answer = {{"refused", e.what()}};
     } catch (const std::exception& e) {
         answer = {{"refused", std::string("could not be read: ") + e.what()}};
     }
     write_json_atomic(out, answer);
     std::fflush(nullptr);
+    // Not even the plugin's instance destructors: a bridge's interpreter may not end cleanly, and the
+    // answer is written.
     ::_exit(0);  // no static destructors of plugin code: they are not part of the descriptor
 }
 
@@ -110,6 +131,60 @@ PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
         g_memory[key] = answer;
     }
     return from_answer(answer, file);
+}
+
+PluginInfo probe_extra_params(const PluginInfo& info, const ParamMap& given, int timeout_s) {
+    if (!info.has_extra_params) return info;
+    if (const char* env = std::getenv("VOBENCH_PROBE_TIMEOUT"); env && std::atoi(env) > 0) timeout_s = std::atoi(env);
+    const ParamMap table = table_params(info, given);
+    try {
+        validate_params(info, table);
+    } catch (const std::invalid_argument& e) {
+        throw PluginLoadError(e.what());
+    }
+    Hasher h;
+    try {
+        hash_file(h, info.path);
+    } catch (const std::exception&) {
+        throw PluginLoadError(info.path.string() + ": cannot be read");
+    }
+    h.add("extra params of " + fs::absolute(info.path).string());
+    for (const auto& [k, v] : table) h.add(k + "=" + v + ";");
+    const std::string key = h.hex();
+    {
+        std::lock_guard<std::mutex> lock(g_mutex);
+        if (auto it = g_memory.find(key); it != g_memory.end()) return from_answer(it->second, info.path);
+    }
+    const fs::path out = fs::temp_directory_path() / ("vobench-probe-" + std::to_string(::getpid()) + "-" + key + ".json");
+    std::error_code ec;
+    fs::remove(out, ec);
+    std::vector<std::string> args = {"plugin-probe", fs::absolute(info.path).string(), out.string(), "--extend"};
+    for (const auto& [k, v] : table) {
+        args.push_back("--param");
+        args.push_back(k + "=" + v);
+    }
+    ChildLimits limits;
+    limits.timeout_s = timeout_s;
+    limits.contain = true;
+    limits.memory_mb = 4096;
+    const ChildResult child = run_self_limited(args, limits);
+    nlohmann::json answer = read_json_or_null(out, 1 << 22);
+    fs::remove(out, ec);
+    bool well_formed = false;
+    if (answer.is_object() && answer.contains("refused") && answer["refused"].is_string()) well_formed = true;
+    if (answer.is_object() && answer.contains("info")) try {
+            plugin_info_from_json(answer.at("info"));
+            well_formed = true;
+        } catch (const std::exception&) {}
+    if (!(child.exited && child.exit_code == 0) || !well_formed)
+        answer = {{"refused", "asking it for the parameters of " + (table.empty() ? std::string("its defaults") : params_text(table)) +
+                                  (child.timed_out ? " did not finish within " + std::to_string(timeout_s) + " s (killed)"
+                                                   : " in a child process ended it: " + child.describe())}};
+    {
+        std::lock_guard<std::mutex> lock(g_mutex);
+        g_memory[key] = answer;
+    }
+    return from_answer(answer, info.path);
 }
 
 }  // namespace vobench

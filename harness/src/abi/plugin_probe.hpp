@@ -9,6 +9,7 @@
 // "off" disables the folder), so each build of a plugin is probed once.
 #pragma once
 
+#include "abi/params.hpp"
 #include "abi/plugin_library.hpp"
 
 #include <filesystem>
@@ -21,7 +22,16 @@ namespace vobench {
 // instead, when set).
 PluginInfo probe_plugin(const std::filesystem::path& file, int timeout_s = 20);
 
-// The child side: loads `file` and writes {"info": …} or {"refused": "…"} to `out`. Returns 0.
-int probe_plugin_main(const std::filesystem::path& file, const std::filesystem::path& out);
+// `info` (a probe's answer) extended by the parameters its instances declare for the values in `given`
+// (API 3 extra_params): a child creates one instance and asks it. Unchanged when the plugin declares
+// none. Not cached on disk (what a bridge declares depends on files beside the library, e.g. a Python
+// module); memoised in this process by file, library content and the given values. Throws
+// PluginLoadError("<plugin>: <reason>") when the values are invalid, or the plugin fails, crashes or
+// hangs while answering.
+PluginInfo probe_extra_params(const PluginInfo& info, const ParamMap& given, int timeout_s = 60);
+
+// The child side: loads `file` and writes {"info": …} or {"refused": "…"} to `out`; with `given`
+// (probe_extra_params) the info is extended by one instance's extra parameters. Returns 0.
+int probe_plugin_main(const std::filesystem::path& file, const std::filesystem::path& out, const ParamMap& given = {}, bool extend = false);
 
 }  // namespace vobench

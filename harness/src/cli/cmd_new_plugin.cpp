@@ -36,13 +36,34 @@ std::string camel(const std::string& name) {
     return out;
 }
 
+// NAME.py from the Python template, and a README that says how to check and run it.
+void write_python_project(const fs::path& out, const std::string& name) {
+    std::string source = plugin_template::kPython;
+    source = replace_all(source, "The smallest vobench odometry plugin in Python",
+                         name + " — a vobench odometry plugin in Python, made from the smallest one");
+    source = replace_all(source, "template.py", name + ".py");
+    const fs::path file = out / (name + ".py");
+    write_file_atomic(file, source);
+    write_file_atomic(out / "README.md",
+                      fmt::format("# {0}\n\nA vobench odometry plugin in Python, run by the `python` bridge plugin (no build step):\n\n"
+                                  "```sh\nvobench plugins info python --param module={1}\n"
+                                  "vobench plugins check python --param module={1}\n"
+                                  "vobench track --dataset tum --path SEQUENCE --algorithm python --param module={1}\n```\n\n"
+                                  "In a config: `- {{name: {0}, plugin: python, params: {{module: {1}}}}}`.\n",
+                                  name, file.string()));
+    std::cout << fmt::format("wrote {0} and {1}/README.md\nnext: vobench plugins check python --param module={0}\n", file.string(),
+                             out.string());
+}
+
 }  // namespace
 
 void add_new_plugin_command(CLI::App& app, int& exit_code) {
     auto* c = app.add_subcommand("new-plugin", "Write a ready-to-build out-of-tree odometry plugin project from the template");
     static std::string name, dir;
+    static bool python = false;
     c->add_option("NAME", name, "Plugin name: lower-case letters, digits and _")->required();
     c->add_option("--dir", dir, "Project folder (default: ./NAME); must not exist or be empty");
+    c->add_flag("--python", python, "A Python plugin (NAME.py, run by the python bridge) instead of a C++ project");
     c->callback([&exit_code] {
         if (name.empty() ||
             !std::all_of(name.begin(), name.end(),
@@ -55,6 +76,11 @@ void add_new_plugin_command(CLI::App& app, int& exit_code) {
         const fs::path out = dir.empty() ? fs::path(name) : fs::path(dir);
         if (fs::exists(out) && !fs::is_empty(out)) throw std::runtime_error(out.string() + ": exists and is not empty");
         fs::create_directories(out);
+        if (python) {
+            write_python_project(out, name);
+            exit_code = 0;
+            return;
+        }
         std::string source = plugin_template::kSource;
         source = replace_all(source, "TemplateVo", camel(name));
         source = replace_all(source, "\"template\"", "\"" + name + "\"");

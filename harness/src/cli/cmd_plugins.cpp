@@ -35,9 +35,12 @@ nlohmann::json plugin_json(const PluginInfo& p, bool with_params) {
         j["license"] = p.license;
         j["url"] = p.url;
         j["params"] = nlohmann::json::array();
-        for (const sdk::Param& param : p.params) {
+        j["has_extra_params"] = p.has_extra_params;
+        for (std::size_t k = 0; k < p.params.size(); ++k) {
+            const sdk::Param& param = p.params[k];
             nlohmann::json pj{
                 {"name", param.name}, {"type", type_name(param.type)}, {"default", param.default_value}, {"help", param.help}};
+            if (k >= p.table_size) pj["extra"] = true;  // declared for the values given, not in the descriptor
             if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE) pj["range"] = {param.min_value, param.max_value};
             if (param.type == VOBENCH_PARAM_ENUM) pj["choices"] = param.choices;
             j["params"].push_back(pj);
@@ -75,10 +78,14 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
     auto* info = plugins->add_subcommand("info", "Describe one plugin and its parameters");
     static std::string info_name;
     static bool info_json = false;
+    static std::vector<std::string> info_params;
     info->add_option("NAME", info_name, "Plugin name or path")->required();
     info->add_flag("--json", info_json, "Print JSON");
+    info->add_option("--param", info_params,
+                     "key=value (repeatable): for a plugin whose parameters depend on others' values (e.g. python module=FILE), "
+                     "list those it then takes");
     info->callback([&exit_code] {
-        const PluginInfo p = PluginRegistry().describe(info_name);
+        const PluginInfo p = probe_extra_params(PluginRegistry().describe(info_name), parse_key_values(info_params, "--param"));
         const nlohmann::json j = plugin_json(p, true);
         if (info_json) {
             std::cout << json_text(j) << std::endl;
@@ -87,7 +94,9 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
                                      p.abi_version, p.api_version, clean_text(p.license), clean_text(p.description, true),
                                      j["path"].get<std::string>());
             if (p.params.empty()) std::cout << "no parameters\n";
-            for (const sdk::Param& param : p.params) {
+            for (std::size_t k = 0; k < p.params.size(); ++k) {
+                const sdk::Param& param = p.params[k];
+                if (k == p.table_size) std::cout << "declared for the values given (--param):\n";
                 std::string range;
                 if (param.type == VOBENCH_PARAM_INT || param.type == VOBENCH_PARAM_DOUBLE)
                     range = fmt::format(" [{} .. {}]", param.min_value, param.max_value);
@@ -95,6 +104,8 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
                 std::cout << fmt::format("  {:<22} {:<6} = {:<10}{}\n      {}\n", param.name, type_name(param.type),
                                          clean_text(param.default_value), clean_text(range), clean_text(param.help));
             }
+            if (p.has_extra_params && p.params.size() == p.table_size)
+                std::cout << "(declares more parameters for the values of these: see --param)\n";
         }
         exit_code = 0;
     });
@@ -102,9 +113,14 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
     // Internal: the child that reads one library's descriptor (see abi/plugin_probe.hpp).
     auto* probe = app.add_subcommand("plugin-probe", "")->group("");
     static std::string probe_file, probe_out;
+    static std::vector<std::string> probe_params;
+    static bool probe_extend = false;
     probe->add_option("file", probe_file)->required();
     probe->add_option("out", probe_out)->required();
-    probe->callback([&exit_code] { exit_code = probe_plugin_main(probe_file, probe_out); });
+    probe->add_flag("--extend", probe_extend);
+    probe->add_option("--param", probe_params);
+    probe->callback(
+        [&exit_code] { exit_code = probe_plugin_main(probe_file, probe_out, parse_key_values(probe_params, "--param"), probe_extend); });
 
     auto* check = plugins->add_subcommand("check", "Conformance check of a plugin library (in a child process)");
     static ConformanceOptions check_options;
@@ -112,6 +128,8 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
     static bool in_process = false;
     check->add_option("PATH", check_path, "Plugin library (.so) or the name of an installed plugin")->required();
     check->add_option("--dataset-path", dataset_path, "For dataset plugins: a sequence to open and read");
+    static std::vector<std::string> check_params;
+    check->add_option("--param", check_params, "key=value (repeatable): parameters (options) for the checked instances");
     check->add_option("--timeout", check_options.timeout_s, "Seconds before a hanging plugin is killed")->capture_default_str();
     check->add_flag("--in-process", in_process, "Run in this process (used by the isolated check itself)");
     check->add_option("--verdict", check_options.verdict_file, "With --in-process: write the verdict here at the very end")->group("");
@@ -121,6 +139,7 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
             if (const auto found = PluginRegistry().locate(check_path)) path = *found;  // else the check reports it missing
         check_options.library = path;
         if (!dataset_path.empty()) check_options.dataset_path = dataset_path;
+        check_options.params = parse_key_values(check_params, "--param");
         exit_code = in_process ? run_conformance(check_options, std::cout) : check_in_child(check_options, std::cout);
     });
 }

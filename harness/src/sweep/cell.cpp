@@ -37,6 +37,17 @@ std::string cell_id(const Cell& c) {
     j.erase("frames_declared");  // derived from the reader and the checksum
     Hasher h;
     h.add(json_text(j, -1));
+    // A parameter naming a file (a Python module, a vocabulary, a model) stands for its content too:
+    // an edited module must not be taken for the finished cell of the old one.
+    for (const auto& [key, value] : c.params) {
+        std::error_code ec;
+        if (value.empty() || value.size() > 4096 || !fs::is_regular_file(value, ec)) continue;
+        try {
+            h.add("file parameter " + key + " " + file_hash(value));
+        } catch (const std::exception&) {
+            h.add("file parameter " + key + " unreadable");
+        }
+    }
     return h.hex();
 }
 
@@ -68,8 +79,9 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
             for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {
                 const AlgorithmSpec& a = config.algorithms[ai];
                 const auto& [plugin_file, plugin_hash] = binaries[ai];
-                for (const ParamMap& params : a.variants)
+                for (std::size_t vi = 0; vi < a.variants.size(); ++vi)
                     for (std::size_t r = 0; r < config.seeds.size(); ++r) {
+                        const ParamMap& params = a.variants[vi];
                         Cell c;
                         c.dataset = d.name;
                         c.sequence = s.name;
@@ -85,6 +97,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
                         c.plugin_file = plugin_file;
                         c.plugin_hash = plugin_hash;
                         c.load_error = a.load_error;
+                        if (c.load_error.empty() && vi < a.variant_errors.size()) c.load_error = a.variant_errors[vi];
                         c.params = params;
                         c.repeat = r;
                         c.seed = config.seeds[r];

@@ -1,5 +1,6 @@
 #include "sweep/sweep_config.hpp"
 
+#include "abi/plugin_probe.hpp"
 #include "metrics/metric_catalog.hpp"
 #include "synth/trajectory_families.hpp"
 
@@ -62,11 +63,44 @@ Axis read_axis(const YamlReader& r, const std::string& key, const YAML::Node& no
     return axis;
 }
 
+// For a plugin whose instances declare parameters by the values of others (API 3, e.g. python's
+// module=FILE): each variant against the table a probe child gets for it (one probe per distinct set
+// of the table's own values).
+// A plugin that fails to answer (a module that does not import) is a result, as a plugin that refuses
+// to load: its error is returned per variant, for failed rows. A value it then does not take is a
+// mistake in the config.
+std::vector<std::string> check_extra_params(const YamlReader& r, const YAML::Node& at, const PluginInfo& plugin,
+                                            const std::vector<ParamMap>& variants) {
+    std::vector<std::string> errors;
+    for (const ParamMap& variant : variants) {
+        errors.emplace_back();
+        PluginInfo extended;
+        try {
+            extended = probe_extra_params(plugin, variant);
+        } catch (const PluginLoadError& e) {
+            errors.back() = e.what();
+            continue;
+        }
+        try {
+            validate_params(extended, variant);
+        } catch (const std::invalid_argument& e) {
+            r.fail(at, e.what());
+        }
+    }
+    return errors;
+}
+
 // params × grid (cartesian product) × zip (lists walked together), each value checked against the
 // plugin's parameter table where it was written.
-std::vector<ParamMap> read_variants(const YamlReader& r, const YAML::Node& a, const PluginInfo* plugin) {
+std::vector<ParamMap> read_variants(const YamlReader& r, const YAML::Node& a, const PluginInfo* plugin, std::vector<std::string>& errors) {
+    const auto in_table = [&](const std::string& key) {
+        for (std::size_t i = 0; i < plugin->table_size && i < plugin->params.size(); ++i)
+            if (plugin->params[i].name == key) return true;
+        return false;
+    };
     const auto check = [&](const std::string& key, const std::string& value, const YAML::Node& at) {
         if (!plugin) return;
+        if (plugin->has_extra_params && !in_table(key)) return;  // one the plugin may declare: checked per variant below
         try {
             validate_params(*plugin, {{key, value}});
         } catch (const std::invalid_argument& e) {
@@ -122,6 +156,7 @@ std::vector<ParamMap> read_variants(const YamlReader& r, const YAML::Node& a, co
             }
         variants = std::move(next);
     }
+    if (plugin && plugin->has_extra_params) errors = check_extra_params(r, a, *plugin, variants);
     return variants;
 }
 
@@ -211,6 +246,7 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
         for (const auto& kv : options) {
             const std::string key = kv.first.as<std::string>();
             s.options[key] = r.scalar<std::string>(kv.second, "option " + key);
+            if (reader.has_extra_params && table_params(reader, {{key, ""}}).empty()) continue;  // checked below
             try {
                 validate_params(reader, {{key, s.options[key]}});
             } catch (const std::invalid_argument& e) {
@@ -218,6 +254,9 @@ DatasetSpec read_dataset(const YamlReader& r, const YAML::Node& d, const PluginR
             }
         }
     }
+    if (reader.has_extra_params)
+        if (const auto errors = check_extra_params(r, d["options"] ? d["options"] : d, reader, {s.options}); !errors.front().empty())
+            r.fail(d["reader"] ? d["reader"] : d, errors.front());
     if (!s.synthetic && !s.sensors.empty()) {
         bool has_sensor_option = false;
         for (const auto& p : reader.params) has_sensor_option |= p.name == "sensor";
@@ -253,7 +292,7 @@ AlgorithmSpec read_algorithm(const YamlReader& r, const YAML::Node& a, const Plu
         if (!registry.locate(s.plugin)) r.fail(a["plugin"], e.what());
         s.load_error = e.what();
     }
-    s.variants = read_variants(r, a, plugin ? &*plugin : nullptr);
+    s.variants = read_variants(r, a, plugin ? &*plugin : nullptr, s.variant_errors);
     return s;
 }
 

@@ -58,6 +58,9 @@ struct AlgorithmSpec {
     std::string plugin;              // name or path
     std::vector<ParamMap> variants;  // one per point of the parameter sweep (at least one)
     std::string load_error;          // the plugin exists but refused to load: its cells fail
+    // API 3 plugins (python module=FILE): per variant, why the plugin could not say which parameters it
+    // takes for those values (an import error, a crash); "" where it could. Those cells fail.
+    std::vector<std::string> variant_errors;
     std::string where;
 };
 

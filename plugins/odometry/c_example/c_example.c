@@ -94,7 +94,9 @@ static const char* c_last_error(vobench_odometry* self) { return self->error; }
 
 static void c_destroy(vobench_odometry* self) { free(self); }
 
-static const vobench_odometry_api k_api = {sizeof(vobench_odometry_api), c_create, c_start, c_process, c_reset, c_last_error, c_destroy};
+/* extra_params (API 3): NULL, this plugin's table is all it takes. */
+static const vobench_odometry_api k_api = {
+    sizeof(vobench_odometry_api), c_create, c_start, c_process, c_reset, c_last_error, c_destroy, NULL};
 
 static const vobench_plugin_descriptor k_descriptor = {
     sizeof(vobench_plugin_descriptor),

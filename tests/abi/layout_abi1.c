@@ -1,6 +1,6 @@
 /*
- * layout_api2.c — the ABI manifest: the size and the offset of every field of every public struct of
- * vobench_plugin.h, as of plugin ABI 1 / API 2 on LP64 (x86_64, aarch64). A reordered, resized or
+ * layout_abi1.c — the ABI manifest: the size and the offset of every field of every public struct of
+ * vobench_plugin.h, as of plugin ABI 1 / API 3 on LP64 (x86_64, aarch64). A reordered, resized or
  * inserted field fails this file's compilation; a field appended at the end (the ABI's only allowed
  * change, rule 2) adds a line here and changes only that struct's size. The role CPython's
  * Misc/stable_abi.toml plays for Python's stable ABI.
@@ -107,7 +107,7 @@ PIN(vobench_sequence_info, gt_count, 64);
 PIN(vobench_sequence_info, gt_position_sigma_m, 72);
 PIN(vobench_sequence_info, gt_rotation_sigma_deg, 80);
 
-PIN_SIZE(vobench_dataset_api, 56);
+PIN_SIZE(vobench_dataset_api, 64);
 PIN(vobench_dataset_api, struct_size, 0);
 PIN(vobench_dataset_api, create, 8);
 PIN(vobench_dataset_api, open, 16);
@@ -115,6 +115,7 @@ PIN(vobench_dataset_api, describe, 24);
 PIN(vobench_dataset_api, read_frame, 32);
 PIN(vobench_dataset_api, last_error, 40);
 PIN(vobench_dataset_api, destroy, 48);
+PIN(vobench_dataset_api, extra_params, 56); /* API 3 */
 
 PIN_SIZE(vobench_odometry_config, 32);
 PIN(vobench_odometry_config, struct_size, 0);
@@ -122,7 +123,7 @@ PIN(vobench_odometry_config, camera, 8);
 PIN(vobench_odometry_config, params, 16);
 PIN(vobench_odometry_config, seed, 24);
 
-PIN_SIZE(vobench_odometry_api, 56);
+PIN_SIZE(vobench_odometry_api, 64);
 PIN(vobench_odometry_api, struct_size, 0);
 PIN(vobench_odometry_api, create, 8);
 PIN(vobench_odometry_api, start, 16);
@@ -130,6 +131,7 @@ PIN(vobench_odometry_api, process, 24);
 PIN(vobench_odometry_api, reset, 32);
 PIN(vobench_odometry_api, last_error, 40);
 PIN(vobench_odometry_api, destroy, 48);
+PIN(vobench_odometry_api, extra_params, 56); /* API 3 */
 #endif
 
 int main(void) { return 0; }
