@@ -15,6 +15,7 @@ packages=(
   curl                                  # datasets/fetch.sh
   clang libclang-rt-14-dev              # libFuzzer targets of the text parsers (found when configuring)
   gnuplot-nox                           # the report's figures
+  pybind11-dev python3-dev python3-numpy  # the Python bridge plugins (python, python_dataset)
 )
 if [ "${1:-}" = "--test" ]; then
   packages+=(
@@ -22,6 +23,7 @@ if [ "${1:-}" = "--test" ]; then
     chromium                            # report.html opened headless
     procps                              # pgrep/pkill in the sweep and Slurm tests
     clang-format                        # the format check (CTest style.format)
+    python3-opencv                      # the Python example plugin (orb_pnp.py) and its tests
   )
 fi
 

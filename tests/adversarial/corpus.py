@@ -123,7 +123,7 @@ def expect_rows(name, out, expected, dataset_key=False):
         if pattern == "ok":
             check(f"{name}: {key} is a healthy row", r["status"] == "ok", r["reason"])
         else:
-            ok = r["status"] == "failed" and re.search(pattern, r["reason"]) is not None and r["metrics"] == {}
+            ok = r["status"] == "failed" and re.search(pattern, r["reason"], re.S) is not None and r["metrics"] == {}
             check(f"{name}: {key} -> failed row '{r['reason'][:110]}'", ok, f"status {r['status']}, reason {r['reason']!r}, wanted /{pattern}/")
 
 
@@ -553,6 +553,115 @@ def schemas(args, w):
     check(f"schemas: {runs} run.json (ok and failed rows) and {boards} leaderboards validate against schemas/", runs > 50 and not bad, bad[:5])
 
 
+# ----- Python plugins and readers (issue #16): faults in user Python code ------------------------------
+
+PY_HEAD = "import numpy as np\nimport vobench\n\n\n"
+PY_FAULTS = {
+    # name: (body of process(self, frame), pattern of the failed row's reason)
+    "py_healthy": ("return np.eye(4), 'ok'", "ok"),
+    "py_raises": ("if frame.index == 3:\n            raise ValueError('deliberate failure')\n        return np.eye(4), 'ok'",
+                  r"frame 3: process\(\) raised:.*py_raises\.py\", line \d+, in process.*ValueError: deliberate failure"),
+    "py_garbage": ("return 'hello'", r"frame 0: process\(\) must return \(pose, status\), it returned a str"),
+    "py_wrong_shape": ("return np.eye(3), 'ok'", r"4x4 \(or 3x4\) camera-to-world matrix or \(t, q\), not an array of shape \(3, 3\)"),
+    "py_not_rotation": ("m = np.eye(4)\n        m[0, 0] = 2.0\n        return m, 'ok'", r"the pose's rotation is not a rotation"),
+    "py_bad_status": ("return np.eye(4), 'fine'", r"the status must be 'ok', 'lost' or 'failed', not 'fine'"),
+    "py_nan_pose": ("m = np.eye(4)\n        m[0, 3] = float('nan')\n        return m, 'ok'", r"non-finite"),
+    "py_keeps_view": ("self.kept = frame.rgb\n        return np.eye(4), 'ok'", r"process\(\) kept frame\.rgb after returning"),
+    "py_uses_stale_frame": ("if frame.index == 0:\n            self.old = frame\n            return np.eye(4), 'ok'\n"
+                            "        self.old.rgb\n        return np.eye(4), 'ok'",
+                            r"frame 1: process\(\) raised:.*this frame's process\(\) call has returned"),
+    "py_exits": ("import sys\n        sys.exit(3)", r"SystemExit: 3"),
+    "py_hangs": ("while True:\n            pass", r"timed out after 5 s \(killed\) at frame 0"),
+    "py_memory": ("self.hog = [bytearray(64 << 20) for _ in range(64)]\n        return np.eye(4), 'ok'",
+                  r"exceeded the memory limit of 512 MB"),
+}
+PY_MODULE_FAULTS = {
+    "py_missing_import": ("import numpy as np\nimport no_such_module_xyz\n",
+                          r"py_missing_import\.py\", line 2.*No module named 'no_such_module_xyz'"),
+    "py_syntax_error": ("import numpy as np\ndef broken(:\n", r"py_syntax_error\.py\", line 2.*SyntaxError"),
+    "py_no_class": ("import numpy as np\n\n\nclass Other:\n    pass\n", r"has no class 'Odometry' \(its classes: Other\)"),
+    "py_bad_params": ("class Odometry:\n    PARAMS = {'ratio': (float, 'high', 'help')}\n",
+                      r"PARAMS\['ratio'\]: the default of a float must be a finite number"),
+}
+
+
+def python_faults(args, w):
+    if not args.python:
+        print("skip  python: no --python bridge given (built without pybind11?)")
+        return
+    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
+    seq = os.path.join(w, "empty_sequence")
+    os.makedirs(seq, exist_ok=True)
+    mods = os.path.join(w, "py")
+    for name, (body, _) in PY_FAULTS.items():
+        write(os.path.join(mods, name + ".py"),
+              PY_HEAD + f"class Odometry:\n    def __init__(self, camera, params, seed):\n        pass\n\n"
+                        f"    def process(self, frame):\n        {body}\n")
+    for name, (text, _) in PY_MODULE_FAULTS.items():
+        write(os.path.join(mods, name + ".py"), text)
+    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    algo = lambda n: {"name": n, "plugin": args.python, "params": {"module": os.path.join(mods, n + ".py")}}
+    healthy = [algo("py_healthy"), {"name": "constant_pose", "plugin": args.constant_pose}]
+    clean = config(os.path.join(w, "py_clean.yaml"), "py clean", os.path.join(w, "py_clean"), [reader], healthy)
+    faulty = config(os.path.join(w, "py_faults.yaml"), "py faults", os.path.join(w, "py_faults"), [reader],
+                    healthy + [algo(n) for n in list(PY_FAULTS)[1:] + list(PY_MODULE_FAULTS)])
+    r0, _ = sweep(args, clean)
+    check("python: the clean sweep succeeds", r0.returncode == 0, r0.stderr[-2000:])
+    r1, seconds = sweep(args, faulty)
+    check(f"python: the sweep with {len(PY_FAULTS) + len(PY_MODULE_FAULTS) - 1} Python faults finishes (exit 0, {seconds:.1f} s)",
+          r1.returncode == 0 and "sweep finished" in r1.stderr, f"exit {r1.returncode}: {r1.stderr[-3000:]}")
+    expected = {n: v[1] for n, v in PY_FAULTS.items()}
+    expected.update({n: v[1] for n, v in PY_MODULE_FAULTS.items()})
+    found = runs_by_algorithm(os.path.join(w, "py_faults"))
+    for key, pattern in expected.items():
+        r = next((v for k, v in found.items() if k[1] == key), None)
+        if r is None:
+            check(f"python: {key}", False, "no row")
+        elif pattern == "ok":
+            check(f"python: {key} is a healthy row", r["status"] == "ok", r["reason"])
+        else:
+            ok = r["status"] == "failed" and re.search(pattern, r["reason"], re.S) is not None and r["metrics"] == {}
+            check(f"python: {key} -> failed row '{r['reason'][-110:]}'", ok, f"status {r['status']}, reason {r['reason']!r}, wanted /{pattern}/")
+    same_healthy("python", os.path.join(w, "py_faults"), os.path.join(w, "py_clean"))
+    check("python: no process of any cell outlives it", not cell_processes(), f"left: {cell_processes()}")
+
+    # A value the class's PARAMS does not allow is a mistake in the config, named where it was written.
+    bad = config(os.path.join(w, "py_bad_value.yaml"), "py bad value", os.path.join(w, "py_bad_value"), [reader],
+                 [{"name": "x", "plugin": args.python,
+                   "params": {"module": os.path.join(args.examples, "template.py"), "scale": 99}}])
+    r = run([args.vobench, "run", bad])
+    check("python: a PARAMS value out of range is refused with file:line:column",
+          r.returncode != 0 and "py_bad_value.yaml:" in r.stderr and "'scale': '99' is outside [0" in r.stderr, r.stderr[-600:])
+
+    # Readers in Python: one healthy, one that raises at frame 5, one that returns the wrong things.
+    reader_py = {
+        "pyr_healthy": "",
+        "pyr_raises": "        if i == 5:\n            raise KeyError('frame five is missing')\n",
+        "pyr_wrong_dtype": "        if i == 2:\n            return {'rgb': np.zeros((24, 32, 3), np.float64) - 1, 'depth': 'x', 'timestamp': 0.1 * i}\n",
+        "pyr_not_dict": "        if i == 1:\n            return [1, 2]\n",
+    }
+    for name, extra in reader_py.items():
+        write(os.path.join(mods, name + ".py"), "import numpy as np\n\n\nclass Dataset:\n"
+              "    def open(self, path, options):\n        self.n = 30\n\n"
+              "    def describe(self):\n        gt = np.zeros((30, 8))\n        gt[:, 0] = 0.1 * np.arange(30)\n        gt[:, 7] = 1\n"
+              "        return {'name': 'pyseq', 'sensor': 'synthetic', 'frame_count': 30, 'ground_truth': gt,\n"
+              "                'camera': {'width': 32, 'height': 24, 'fx': 30.0, 'fy': 30.0, 'cx': 15.5, 'cy': 11.5}}\n\n"
+              "    def read_frame(self, i):\n" + extra +
+              "        return {'rgb': np.full((24, 32, 3), i, np.uint8), 'depth': np.ones((24, 32), np.float32), 'timestamp': 0.1 * i}\n")
+    datasets = [{"name": n, "reader": args.python_dataset, "path": seq, "options": {"module": os.path.join(mods, n + ".py")}}
+                for n in reader_py]
+    cfg = config(os.path.join(w, "pyr.yaml"), "py readers", os.path.join(w, "pyr"), datasets,
+                 [{"name": "constant_pose", "plugin": args.constant_pose}])
+    r, seconds = sweep(args, cfg)
+    check(f"python readers: the sweep finishes (exit 0, {seconds:.1f} s)", r.returncode == 0, r.stderr[-2000:])
+    expect_rows("python readers", os.path.join(w, "pyr"), {
+        "pyr_healthy": "ok",
+        "pyr_raises": r"read_frame\(5\).*KeyError: 'frame five is missing'",
+        "pyr_wrong_dtype": r"read_frame\(2\).*'depth' must be an H x W float \(metres\) or uint16 array",
+        "pyr_not_dict": r"read_frame\(1\) must return a dict, not a list",
+    }, dataset_key=True)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--vobench", required=True)
@@ -561,6 +670,9 @@ def main():
     ap.add_argument("--constant-pose", required=True)
     ap.add_argument("--tum", required=True)
     ap.add_argument("--only", default="")
+    ap.add_argument("--python", default="", help="the python bridge plugin (vobench_python.so)")
+    ap.add_argument("--python-dataset", default="", help="the python_dataset bridge plugin")
+    ap.add_argument("--examples", default="", help="plugins/odometry/python_examples")
     args = ap.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -569,7 +681,7 @@ def main():
     os.environ["VOBENCH_PROBE_CACHE"] = os.path.join(args.work, "probe-cache")
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
-    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, lock_and_cli, schemas):
+    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)
