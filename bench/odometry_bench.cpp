@@ -67,7 +67,7 @@ const Sequence& sequence(const std::string& name) {
     return cache[name] = load(synthetic(name, name, "tum", 40), {});
 }
 
-void run_odometry(benchmark::State& state, const std::string& plugin, const std::string& data) {
+void run_odometry(benchmark::State& state, const std::string& plugin, const std::string& data, const ParamMap& params = {}) {
     cv::setNumThreads(1);  // one core, as the targets are stated
     const Sequence& s = sequence(data);
     if (s.frames.empty()) {
@@ -75,7 +75,7 @@ void run_odometry(benchmark::State& state, const std::string& plugin, const std:
         return;
     }
     OdometryInstance odo(registry().load(plugin, VOBENCH_KIND_ODOMETRY));
-    odo.start(s.camera, {}, 1);
+    odo.start(s.camera, params, 1);
     std::size_t k = 0;
     vobench_pose pose{};
     pose.struct_size = sizeof(pose);
@@ -145,6 +145,14 @@ BENCHMARK_CAPTURE(run_odometry, put_vo / kinect2_1920x1080, "put_vo", "kinect2")
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect2_1920x1080, "opencv_rgbd", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / tum_fr1_rpy, "put_vo", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / tum_fr1_rpy, "opencv_rgbd", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+// The Python bridge against the C++ null baseline, on the same decoded frames: what a Python plugin
+// pays per frame before its own work (bench/python_empty.py returns a stored pose).
+BENCHMARK_CAPTURE(run_odometry, constant_pose / tum_fr1_rpy, "constant_pose", "tum-fr1-rpy")->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, python_empty / tum_fr1_rpy, "python", "tum-fr1-rpy", ParamMap{{"module", VOBENCH_PYTHON_EMPTY}})
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, constant_pose / kinect1_640x480, "constant_pose", "kinect1")->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, python_empty / kinect1_640x480, "python", "kinect1", ParamMap{{"module", VOBENCH_PYTHON_EMPTY}})
+    ->UseRealTime();
 BENCHMARK_CAPTURE(run_synth, kinect1, "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 BENCHMARK_CAPTURE(run_synth, kinect2, "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
 

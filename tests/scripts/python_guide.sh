@@ -29,10 +29,11 @@ datasets:
   - {name: sim, synthetic: {trajectories: [speed2], sensors: [kinect1], frames: 20, cache: datasets}}
 algorithms:
   - {plugin: put_vo}
-  - {name: my_py_vo, plugin: python, params: {module: my_py_vo/my_py_vo.py}}
+  - {name: my_py_vo, plugin: python, params: {module: my_py_vo/my_py_vo.py}, grid: {scale: [1.0, 2.0]}}
 YAML
 "$vobench" -q run mine_py.yaml --out results/mine_py
-grep -q "### my_py_vo" results/mine_py/summary.md
+grep -qF '### my_py_vo \[module=my_py_vo/my_py_vo.py scale=1.0\]' results/mine_py/summary.md
+grep -qF '### my_py_vo \[module=my_py_vo/my_py_vo.py scale=2.0\]' results/mine_py/summary.md
 grep -q '"entry": "my_py_vo' results/mine_py/leaderboard.json
 # 4. a dataset reader in Python
 mkdir -p folder && cp -r seq/rgb seq/depth folder/ && grep -v '^#' seq/groundtruth.txt > folder/poses.txt
@@ -47,4 +48,14 @@ ate = j["metrics"]["ate.rmse"]
 assert 0 < ate < 0.05, f"put_vo through the Python reader: ATE {ate} m"
 print(f"put_vo through the Python PNG reader: ATE {ate:.4f} m")
 PY
+cat > png.yaml <<YAML
+datasets:
+  - {name: pngs, reader: python_dataset, path: folder, options: {module: $src/plugins/datasets/python_examples/png_folder.py}}
+algorithms:
+  - {plugin: put_vo}
+  - {name: my_py_vo, plugin: python, params: {module: my_py_vo/my_py_vo.py}}
+YAML
+"$vobench" -q run png.yaml --out results/png | tee png_run.txt
+grep -q "2 cells, 0 failed" png_run.txt
+grep -q '"entry": "put_vo"' results/png/leaderboard.json
 echo "python guide: done"
