@@ -33,7 +33,7 @@ TEST_CASE("vobench track writes trajectory.txt, timing.csv and a JSON summary", 
     std::ifstream csv(out.path() / "timing.csv");
     std::string header;
     std::getline(csv, header);
-    CHECK(header == "index,stamp,process_ms,read_ms,status,stage_integrate_ms,count_elapsed_s");
+    CHECK(header == "index,stamp,process_ms,read_ms,status,stage_integrate_ms,count_elapsed_s,cpu_ms");
 }
 
 TEST_CASE("vobench data info describes the fr1/rpy sample", "[cli][data]") {

@@ -2,8 +2,10 @@
 #include "cli/commands.hpp"
 #include "cli/protocol_options.hpp"
 #include "metrics/metric_catalog.hpp"
+#include "record/timing_stats.hpp"
 #include "track/track.hpp"
 #include "util/files.hpp"
+#include "util/subprocess.hpp"
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -32,6 +34,13 @@ void add_track_command(CLI::App& app, int& exit_code) {
     static std::string cache;
     c->add_option("--frame-cache", cache, "Decoded-frame cache folder (zstd, keyed by reader, options and content)");
     c->add_flag("--json", json, "Print a JSON summary on stdout");
+    static bool realtime = false;
+    c->add_flag("--realtime", realtime,
+                "Offer frames at their recorded stamps; a frame that arrives while the plugin is busy is dropped (as on a robot)");
+    c->add_option("--speed", options.timing.speed, "With --realtime: the stream's speed factor")
+        ->capture_default_str()
+        ->check(CLI::Range(1e-3, 1e3));
+    c->add_option("--warmup", options.timing.warmup_frames, "Frames left out of the timing statistics (not of the trajectory)");
     protocol.add_to(c);
     c->callback([&exit_code] {
         options.dataset_options = parse_key_values(dataset_options, "--option");
@@ -39,18 +48,24 @@ void add_track_command(CLI::App& app, int& exit_code) {
         options.params = parse_key_values(params, "--param");
         options.protocol = protocol.build();
         options.frame_cache = cache;
+        options.timing.mode = realtime ? "realtime" : "offline";
         const TrackResult r = run_track(options, PluginRegistry());
         if (!out.empty()) {
             write_track_outputs(r, out);
             spdlog::info("wrote {}/trajectory.txt and timing.csv", out);
         }
-        const double ms = r.mean_ms();
+        const nlohmann::json timing = timing_statistics(r.frames, options.timing);
+        const double ms = timing["mean_ms"].get<double>();
         // The metrics under the catalogue's names, as in run.json and the leaderboard.
         nlohmann::json metric_values{{"lost_frames", r.failed_frames},
                                      {"failed_frames", r.failed_frames},
+                                     {"dropped_frames", r.dropped_frames},
                                      {"ms_per_frame", ms},
                                      {"fps", ms > 0 ? 1000.0 / ms : 0.0}};
-        nlohmann::json j{{"frames", r.frames.size()}, {"metrics", nullptr}};
+        nlohmann::json j{{"frames", r.frames.size()},
+                         {"metrics", nullptr},
+                         {"timing", timing},
+                         {"timing_protocol", timing_protocol(options.timing, -1, allowed_cpus(), -1)}};
         if (r.evaluation) {
             for (const auto& [name, value] : metrics::flatten(*r.evaluation)) metric_values[name] = value;
             j["protocol"] = metrics::protocol_json(r.evaluation->protocol);
@@ -64,6 +79,9 @@ void add_track_command(CLI::App& app, int& exit_code) {
         } else {
             std::cout << fmt::format("{} ({}): {} frames, {} not tracked, {:.3f} ms/frame ({:.1f} fps) in the plugin\n", r.sequence,
                                      r.sensor, r.frames.size(), r.failed_frames, ms, ms > 0 ? 1000.0 / ms : 0.0);
+            if (options.timing.mode == "realtime")
+                std::cout << fmt::format("real time (x{}): {} frames dropped (arrived while the plugin was busy), {} processed\n",
+                                         options.timing.speed, r.dropped_frames, r.frames.size() - r.dropped_frames);
             if (r.evaluation && r.evaluation->ate) std::cout << fmt::format("ATE rmse {:.6f} m\n", r.evaluation->ate->stats.rmse);
             if (r.evaluation && r.evaluation->rpe)
                 std::cout << fmt::format("RPE (delta {} {}) rmse {:.6f} m, {:.6f} deg\n", r.evaluation->protocol.rpe_delta,

@@ -22,6 +22,7 @@ const std::vector<MetricInfo>& metric_catalog() {
         {"fps", "1/s", B::higher, C::mean, G::none, "frames per second"},
         {"lost_frames", "frames", B::lower, C::sum, G::none, "lost frames"},
         {"failed_frames", "frames", B::lower, C::sum, G::none, "failed frames"},
+        {"dropped_frames", "frames", B::lower, C::sum, G::none, "dropped frames (real time)"},
         {"failed_cells", "cells", B::lower, C::sum, G::none, "failed cells"},
     };
     return catalog;

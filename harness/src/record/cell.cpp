@@ -1,8 +1,13 @@
 #include "record/cell.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 namespace vobench {
+
+namespace {
+nlohmann::json cell_fields(const Cell& c);
+}  // namespace
 
 int64_t Cell::frames_required() const {
     if (frames_declared < 0) return -1;
@@ -11,7 +16,27 @@ int64_t Cell::frames_required() const {
 
 std::string Cell::entry_label() const { return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]"; }
 
+nlohmann::json timing_spec_json(const TimingSpec& t) { return {{"mode", t.mode}, {"speed", t.speed}, {"warmup_frames", t.warmup_frames}}; }
+
+TimingSpec timing_spec_from_json(const nlohmann::json& j) {
+    TimingSpec t;
+    t.mode = j.at("mode").get<std::string>();
+    t.speed = j.at("speed").get<double>();
+    t.warmup_frames = j.at("warmup_frames").get<uint64_t>();
+    if ((t.mode != "offline" && t.mode != "realtime") || !(t.speed > 0 && t.speed < 1e6))
+        throw std::invalid_argument("timing: mode must be offline or realtime and speed positive");
+    return t;
+}
+
 nlohmann::json cell_to_json(const Cell& c) {
+    nlohmann::json j = cell_fields(c);
+    // Absent when default: the ids of cells recorded before timing existed stay what they were.
+    if (!c.timing.is_default()) j["timing"] = timing_spec_json(c.timing);
+    return j;
+}
+
+namespace {
+nlohmann::json cell_fields(const Cell& c) {
     return {{"id", c.id},
             {"dataset", c.dataset},
             {"sequence", c.sequence},
@@ -35,6 +60,7 @@ nlohmann::json cell_to_json(const Cell& c) {
             {"protocol", metrics::protocol_json(c.protocol)},
             {"limits", {{"timeout_s", c.limits.timeout_s}, {"memory_mb", c.limits.memory_mb}, {"threads", c.limits.threads}}}};
 }
+}  // namespace
 
 Cell cell_from_json(const nlohmann::json& j) {
     Cell c;
@@ -63,6 +89,7 @@ Cell cell_from_json(const nlohmann::json& j) {
     c.limits.timeout_s = j.at("limits").at("timeout_s");
     c.limits.memory_mb = j.at("limits").at("memory_mb");
     c.limits.threads = j.at("limits").at("threads");
+    if (j.contains("timing")) c.timing = timing_spec_from_json(j.at("timing"));
     return c;
 }
 

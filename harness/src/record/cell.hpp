@@ -27,6 +27,19 @@ struct Limits {
     int threads = 1;            // OpenCV/TBB threads inside a cell: 1 keeps timings comparable and -j honest
 };
 
+// How the plugin's time is taken (issue #20). offline: every frame, as fast as the plugin goes.
+// realtime: frames are offered at their recorded stamps (÷ speed) on a clock that advances by the
+// measured process() times; a frame that arrives while the plugin is busy is dropped, as on a robot.
+// warmup_frames: the first processed frames left out of the timing statistics (not of the trajectory).
+struct TimingSpec {
+    std::string mode = "offline";  // "offline" | "realtime"
+    double speed = 1.0;            // realtime: the stream's speed factor (2: twice as fast as recorded)
+    uint64_t warmup_frames = 0;
+    bool is_default() const { return mode == "offline" && speed == 1.0 && warmup_frames == 0; }
+};
+nlohmann::json timing_spec_json(const TimingSpec& t);
+TimingSpec timing_spec_from_json(const nlohmann::json& j);  // throws on a malformed one
+
 struct Cell {
     std::string id;
     // What it runs on.
@@ -47,6 +60,7 @@ struct Cell {
     // How it is judged and bounded.
     metrics::Protocol protocol;
     Limits limits;
+    TimingSpec timing;  // in the record (and so in the id) only when not the default
 
     // "redetect_below=100 lk_levels=3", or "defaults".
     std::string variant_label() const;

@@ -10,8 +10,10 @@
 namespace vobench {
 
 std::string encode_frame(const FrameRecord& f, const metrics::StampedPose& p) {
+    if (f.dropped) return json_text(nlohmann::json{{"i", f.index}, {"t", f.stamp}, {"r", f.read_ns}, {"d", 1}}, -1) + "\n";
     nlohmann::json j{{"i", f.index},   {"t", f.stamp},    {"ns", f.process_ns},
                      {"r", f.read_ns}, {"s", f.tracking}, {"p", {p.p.x(), p.p.y(), p.p.z(), p.q.x(), p.q.y(), p.q.z(), p.q.w()}}};
+    if (f.cpu_ns >= 0) j["cpu"] = f.cpu_ns;
     for (const auto& [name, ns] : f.stages) j["st"][name] = ns;
     for (const auto& [name, v] : f.counters) j["c"][name] = v;
     return json_text(j, -1) + "\n";
@@ -24,6 +26,13 @@ bool finite_number(const nlohmann::json& v) { return v.is_number() && std::isfin
 // Why `j` is not frame `expected`, or "".
 std::string check_line(const nlohmann::json& j, uint64_t expected) {
     if (!j.is_object()) return "not a JSON object";
+    if (j.contains("d")) {  // a dropped frame: index, stamp, read time, nothing else
+        if (j.size() != 4 || j["d"] != 1 || !j.contains("i") || !j.contains("t") || !j.contains("r")) return "a malformed dropped frame";
+        if (!j["i"].is_number_unsigned() || j["i"].get<uint64_t>() != expected) return "frame index is not " + std::to_string(expected);
+        if (!finite_number(j["t"]) || !j["r"].is_number_integer()) return "a dropped frame's stamp or time is not a number";
+        return "";
+    }
+    if (j.contains("cpu") && !j["cpu"].is_number_integer()) return "the CPU time is not an integer";
     for (const char* key : {"i", "t", "ns", "r", "s", "p"})
         if (!j.contains(key)) return std::string("no field '") + key + "'";
     if (!j["i"].is_number_unsigned() || j["i"].get<uint64_t>() != expected) return "frame index is not " + std::to_string(expected);
@@ -68,6 +77,14 @@ FrameStream decode_frames(const std::filesystem::path& file) {
         FrameRecord f;
         f.index = j["i"];
         f.stamp = j["t"];
+        if (j.contains("d")) {
+            f.dropped = true;
+            f.read_ns = j["r"];
+            ++s.dropped_frames;
+            s.frames.push_back(std::move(f));
+            continue;
+        }
+        if (j.contains("cpu")) f.cpu_ns = j["cpu"];
         f.process_ns = j["ns"];
         f.read_ns = j["r"];
         f.tracking = j["s"];

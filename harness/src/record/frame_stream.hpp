@@ -26,20 +26,26 @@ struct FrameRecord {
     double stamp = 0;
     int64_t process_ns = 0;
     int64_t read_ns = 0;  // waiting for this frame (decoding it, when there is no prefetch thread)
+    // CPU time of the process during the call, all its threads but the frame-reading one (-1: not
+    // measured): above process_ns when the plugin runs threads of its own.
+    int64_t cpu_ns = -1;
+    // Real-time mode: the frame arrived while the plugin was busy and was not given to it (no pose).
+    bool dropped = false;
     vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
     std::vector<std::pair<std::string, int64_t>> stages;
     std::vector<std::pair<std::string, double>> counters;
 };
 
-// One line, newline included.
+// One line, newline included; a dropped frame's line has no pose (`pose` is not read).
 std::string encode_frame(const FrameRecord& frame, const metrics::StampedPose& pose);
 
 struct FrameStream {
     std::vector<FrameRecord> frames;
-    metrics::Trajectory poses;    // one per frame
-    std::size_t lost_frames = 0;  // tracking status not OK
-    std::string error;            // "" or "frames.jsonl line 7: …"
-    bool truncated_tail = false;  // the last line had no newline (the child died while writing it)
+    metrics::Trajectory poses;       // one per frame that was not dropped
+    std::size_t lost_frames = 0;     // tracking status not OK
+    std::size_t dropped_frames = 0;  // real-time mode: not given to the plugin
+    std::string error;               // "" or "frames.jsonl line 7: …"
+    bool truncated_tail = false;     // the last line had no newline (the child died while writing it)
 };
 
 FrameStream decode_frames(const std::filesystem::path& file);

@@ -41,11 +41,17 @@ std::string record_problem(const fs::path& dir, const std::string& id) {
     if (!run.contains("status") || (run["status"] != "ok" && run["status"] != "failed")) return "run.json has no status ok or failed";
     if (!run.contains("frames") || !run["frames"].is_number_unsigned()) return "run.json has no frame count";
     if (!run.contains("timing") || !run["timing"].is_object()) return "run.json has no timing";
-    const uint64_t frames = run["frames"];
+    // Real-time mode: dropped frames were handled but have no pose.
+    const uint64_t dropped =
+        run.contains("dropped_frames") && run["dropped_frames"].is_number_unsigned() ? run["dropped_frames"].get<uint64_t>() : 0;
+    if (dropped > run["frames"].get<uint64_t>()) return "run.json says more frames were dropped than handled";
+    const uint64_t frames = run["frames"].get<uint64_t>() - dropped;
     if (frames == 0) return "";
     try {
         const std::size_t poses = metrics::read_trajectory(dir / "trajectory.txt").poses.size();
-        if (poses != frames) return "trajectory.txt holds " + std::to_string(poses) + " poses, run.json says " + std::to_string(frames);
+        if (poses != frames)
+            return "trajectory.txt holds " + std::to_string(poses) + " poses, run.json says " + std::to_string(frames) +
+                   (dropped > 0 ? " (" + std::to_string(dropped) + " more dropped)" : "");
     } catch (const std::exception& e) {
         return std::string("trajectory.txt: ") + e.what();
     }

@@ -77,6 +77,7 @@ void write_run_record(const fs::path& dir, const RunRecordFields& f) {
         {"frames", f.frames},
         {"frames_expected", f.frames_expected},
         {"lost_frames", f.lost_frames},
+        {"dropped_frames", f.dropped_frames},
         {"plugin", f.plugin},
         {"sequence", f.sequence},
         {"host", host_info()},
@@ -84,6 +85,7 @@ void write_run_record(const fs::path& dir, const RunRecordFields& f) {
         {"finished", f.finished},
         {"child", {{"outcome", f.child_outcome}, {"log", "child.log"}, {"processes_left_behind", f.processes_left_behind}}},
         {"timing", f.timing},
+        {"timing_protocol", f.timing_protocol},
         {"metrics", f.ok ? nlohmann::json(f.metrics) : nlohmann::json::object()},
         {"evaluation", f.evaluation}};
     write_json_atomic(dir / "run.json", run);
@@ -128,6 +130,7 @@ std::vector<RunRecord> load_runs(const fs::path& out, std::vector<std::string>* 
                 r.metrics["ms_per_frame"] = t.at("mean_ms");
                 r.metrics["fps"] = t.at("fps");
             }
+            if (t.contains("dropped_frames") && t["dropped_frames"].is_number()) r.metrics["dropped_frames"] = t["dropped_frames"];
             const double lost = r.run.value("lost_frames", 0.0);
             const double missing = std::max(0.0, r.run.value("frames_expected", 0.0) - r.run.value("frames", 0.0));
             r.metrics["lost_frames"] = lost;

@@ -49,13 +49,15 @@ struct RunRecordFields {
     uint64_t frames = 0;           // poses recorded
     uint64_t frames_expected = 0;  // what the reader declared (capped by the cell's frame limit)
     uint64_t lost_frames = 0;
+    uint64_t dropped_frames = 0;  // real-time mode: handled (in `frames`), not given to the plugin, no pose
     nlohmann::json plugin = nlohmann::json::object(), sequence = nlohmann::json::object();
     std::string started, finished;
     std::string child_outcome;  // "exited with code 0", "not started", …
     std::size_t processes_left_behind = 0;
     nlohmann::json timing = nlohmann::json::object();
-    MetricMap metrics;          // kept only when ok: a failed row ranks nothing
-    nlohmann::json evaluation;  // evaluation_json, or {"error": …}
+    nlohmann::json timing_protocol = nlohmann::json::object();  // record/timing_stats.hpp timing_protocol
+    MetricMap metrics;                                          // kept only when ok: a failed row ranks nothing
+    nlohmann::json evaluation;                                  // evaluation_json, or {"error": …}
 };
 
 // Writes `dir`/run.json (schemas/run.schema.json) atomically; the reading side is load_runs() below

@@ -138,7 +138,7 @@ std::string timing_table(const std::vector<RunGroup>& groups) {
         "<table class=\"sortable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th "
         "class=\"l\">sensor</th>"
         "<th>mean [ms]</th><th>median</th><th>p95</th><th>max</th><th>fps</th><th>reading [ms]</th><th>peak RSS [MB]</th><th>overhead "
-        "[%]</th>"
+        "[%]</th><th>CPU/wall</th><th>dropped</th>"
         "<th class=\"l\">stages [ms/frame]</th></tr></thead><tbody>\n";
     const auto v = [](const std::optional<double>& x, int d) { return x ? fmt::format("{:.{}f}", *x, d) : std::string(); };
     for (const RunGroup& g : groups) {
@@ -148,11 +148,11 @@ std::string timing_table(const std::vector<RunGroup>& groups) {
         h += fmt::format(
             "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td "
             "class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-            "<td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
+            "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
             html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
             v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
             v(timing_mean(g, "read_ms_per_frame"), 3), v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1),
-            stages);
+            v(timing_mean(g, "cpu_per_wall"), 2), v(timing_mean(g, "dropped_frames"), 1), stages);
     }
     return h + "</tbody></table>\n";
 }
@@ -198,6 +198,7 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     h += "</tbody></table>\n";
     h += "<h2>Timing</h2>\n<p>Only the plugin's process() call is timed (steady clock); stages as the plugin reports them. Reading: "
          "ms per frame spent reading and decoding frames. Overhead: the rest of the frame loop's wall time.</p>\n" +
+         (ctx.timing_text.empty() ? std::string() : "<p id=\"timing-protocol\">" + html_text(ctx.timing_text) + "</p>\n") +
          timing_table(groups);
     h += "<h2>Figures</h2>\n";
     // The page stays loadable for large sweeps: summary figures (bars, RPE over time) first, then the

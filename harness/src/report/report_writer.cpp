@@ -18,6 +18,8 @@
 #include <algorithm>
 #include <fstream>
 
+#include <set>
+
 namespace vobench {
 namespace fs = std::filesystem;
 
@@ -32,6 +34,36 @@ std::string protocol_text(const nlohmann::json& p) {
         text += fmt::format(" RPE at Δ = {} {} (Kraft et al. 2016, eqs. 11–12).", p["rpe"].value("delta", 4.0),
                             p["rpe"].value("delta_unit", "f"));
     return text;
+}
+
+// The cells' timing protocols (run.json timing_protocol) in one paragraph; values that differ between
+// cells are all listed.
+std::string timing_text(const std::vector<RunRecord>& records) {
+    std::set<std::string> modes, warmups, threads, pinning, cpus, governors;
+    for (const RunRecord& r : records) {
+        const nlohmann::json p = r.run.value("timing_protocol", nlohmann::json::object());
+        if (!p.is_object() || !p.contains("mode") || !p["mode"].is_string()) continue;
+        const std::string mode = p["mode"];
+        modes.insert(mode == "realtime"
+                         ? fmt::format("real time at ×{:g} (a frame arriving while the plugin is busy is dropped)", p.value("speed", 1.0))
+                         : "offline (every frame, as fast as the plugin goes)");
+        warmups.insert(fmt::format("{}", p.value("warmup_frames", 0)));
+        threads.insert(fmt::format("{}", p.value("threads_allowed", 1)));
+        pinning.insert(p.value("pinned_core", -1) >= 0 ? "each pinned to a core of its own" : "not pinned");
+        cpus.insert(clean_text(p.value("cpu_model", std::string("unknown"))));
+        governors.insert(clean_text(p.value("governor", std::string("unknown"))));
+    }
+    if (modes.empty()) return "";
+    const auto all = [](const std::set<std::string>& v) {
+        std::string t;
+        for (const std::string& s : v) t += (t.empty() ? "" : " / ") + s;
+        return t;
+    };
+    return fmt::format(
+        "Timing: {}; the first {} processed frame(s) of each cell left out of the statistics; {} thread(s) per cell, cells {}; CPU {}, "
+        "frequency governor: {}. Timed: the plugin's process() call only (steady clock), reading frames outside the window; CPU/wall: "
+        "the process's CPU time during the call over its wall time (above 1: the plugin ran threads of its own).",
+        all(modes), all(warmups), all(threads), all(pinning), all(cpus), all(governors));
 }
 
 }  // namespace
@@ -78,6 +110,7 @@ ReportResult write_report(const fs::path& out, bool re_evaluate) {
         read_settings(nlohmann::json::object());
     }
     ctx.protocol_text = protocol_text(lctx.protocol);
+    ctx.timing_text = timing_text(records);
     lctx.name = ctx.name;
     lctx.rank_by = ctx.rank_by;
     lctx.generated = ctx.generated;

@@ -83,12 +83,21 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
         "\n\n## Timing (the paper's §6 terms; mean ms per frame inside the plugin's process() call)\n\n"
         "Frame reading: ms per frame spent reading and decoding, outside the timed call. Harness overhead: the rest of the frame "
         "loop's wall time (hand-over, streaming results), as a share of it.\n\n";
+    if (!ctx.timing_text.empty()) md += markdown_text(ctx.timing_text) + "\n\n";
+    bool cpu = false, realtime = false;
+    for (const RunGroup& g : groups) {
+        cpu |= timing_mean(g, "cpu_per_wall").has_value();
+        for (const RunRecord* r : g.runs) realtime |= r->cell.timing.mode == "realtime";
+    }
     for (const std::string& entry : entries_of(groups)) {
         const auto stages = stages_of(groups, entry);
         md += fmt::format("### {}\n\n| sequence | sensor |", markdown_text(entry));
         for (const std::string& s : stages) md += " " + markdown_text(s) + " |";
-        md += " process() mean | median | p95 | max | fps | frame reading | peak RSS [MB] | harness overhead [%] |\n|---|---|";
-        for (std::size_t k = 0; k < stages.size() + 8; ++k) md += "---:|";
+        md += " process() mean | median | p95 | max | fps | frame reading | peak RSS [MB] | harness overhead [%] |";
+        if (cpu) md += " CPU/wall |";
+        if (realtime) md += " dropped frames |";
+        md += "\n|---|---|";
+        for (std::size_t k = 0; k < stages.size() + 8 + (cpu ? 1 : 0) + (realtime ? 1 : 0); ++k) md += "---:|";
         md += "\n";
         for (const RunGroup& g : groups) {
             if (g.entry != entry) continue;
@@ -96,7 +105,10 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
             for (const std::string& s : stages) md += " " + opt(stage_mean_ms(g, s), 3) + " |";
             for (const char* f : {"mean_ms", "median_ms", "p95_ms", "max_ms"}) md += " " + opt(timing_mean(g, f), 3) + " |";
             md += " " + opt(timing_mean(g, "fps"), 1) + " | " + opt(timing_mean(g, "read_ms_per_frame"), 3) + " | " +
-                  opt(timing_mean(g, "peak_rss_mb"), 0) + " | " + opt(timing_mean(g, "harness_overhead_pct"), 1) + " |\n";
+                  opt(timing_mean(g, "peak_rss_mb"), 0) + " | " + opt(timing_mean(g, "harness_overhead_pct"), 1) + " |";
+            if (cpu) md += " " + opt(timing_mean(g, "cpu_per_wall"), 2) + " |";
+            if (realtime) md += " " + opt(timing_mean(g, "dropped_frames"), 1) + " |";
+            md += "\n";
         }
         md += "\n";
     }
@@ -122,7 +134,8 @@ std::string summary_markdown(const std::vector<RunGroup>& groups, const ReportCo
 std::string summary_csv(const std::vector<RunGroup>& groups) {
     static const char* kMetrics[] = {"ate.rmse",       "ate.mean",     "ate.median",   "ate.std",     "ate.max",      "rpe.trans.rmse",
                                      "rpe.trans.mean", "rpe.rot.rmse", "rpe.rot.mean", "lost_frames", "failed_frames"};
-    static const char* kTiming[] = {"mean_ms", "median_ms", "p95_ms", "max_ms", "fps", "peak_rss_mb", "harness_overhead_pct"};
+    static const char* kTiming[] = {"mean_ms",      "median_ms",     "p95_ms", "max_ms", "fps", "peak_rss_mb", "harness_overhead_pct",
+                                    "cpu_per_wall", "dropped_frames"};
     const auto quote = [](const std::string& s) { return csv_field(s); };
     std::string csv = "entry,algorithm,params,dataset,sequence,sensor,repeats,failed";
     for (const char* m : kMetrics) csv += fmt::format(",{0}_mean,{0}_std", m);

@@ -17,6 +17,7 @@ namespace vobench {
 struct ReportContext {
     std::string name;           // the sweep's name
     std::string protocol_text;  // "ATE after se3 alignment; RPE at Δ = 4 f (paper protocol …)"
+    std::string timing_text;    // how the times were taken (the cells' timing_protocol), "" when not recorded
     std::string rank_by = "ate.rmse";
     std::string generated;  // ISO date
     // Cells the report could not show: "<id>: missing (in cells.json, no record)" or "<id>: <why

@@ -105,6 +105,7 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
                         c.frames_declared = declared;
                         c.protocol = config.protocol;
                         c.limits = config.limits;
+                        c.timing = config.timing;
                         c.id = cell_id(c);
                         cells.push_back(std::move(c));
                     }

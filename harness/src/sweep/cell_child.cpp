@@ -39,6 +39,8 @@ int exec_cell(const fs::path& work) {
         std::fprintf(stderr, "%s: not a cell record: %s\n", (work / "cell.json").c_str(), e.what());
         return 2;
     }
+    // Before any thread exists (OpenCV's and TBB's pools, the frame reader), so all inherit it.
+    const int pinned = pin_to_cell_cpu();
     cv::setNumThreads(cell.limits.threads);
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(cell.limits.threads));
 
@@ -55,6 +57,7 @@ int exec_cell(const fs::path& work) {
     t.params = cell.params;
     t.seed = cell.seed;
     t.max_frames = cell.max_frames;
+    t.timing = cell.timing;
     t.evaluate = false;
     // One thread means one core: frames are decoded between process() calls (still outside the
     // timed window) instead of on a prefetch thread, so N cells on N cores do not compete.
@@ -109,6 +112,8 @@ int exec_cell(const fs::path& work) {
     }
     std::fclose(stream);
     result["peak_rss_kb"] = peak_resident_kb("self");  // exact at the end; the supervisor's samples cover a crash
+    result["affinity"] = allowed_cpus();
+    result["pinned_core"] = pinned;
     write_json_atomic(work / "result.json", result);
     return 0;
 }

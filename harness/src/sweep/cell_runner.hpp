@@ -31,7 +31,9 @@ struct CellOutcome {
 // Runs one cell and writes <out>/runs/<id>/. Never throws for anything the plugin or data does;
 // throws std::runtime_error only when the output folder cannot be written.
 // `cancel` (optional): when it becomes true the cell's child is killed and nothing is recorded.
-CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out, const std::atomic<bool>* cancel = nullptr);
+// `pinned_core` >= 0: the cell's processes run on that CPU only (sched_setaffinity), as `run -j N`
+// does with N cells on N cores, so that two cells never share a core; -1: not pinned.
+CellOutcome run_cell(const Cell& cell, const std::filesystem::path& out, const std::atomic<bool>* cancel = nullptr, int pinned_core = -1);
 
 // The failed row of a cell that never ran (e.g. its Slurm array task was cancelled or timed out):
 // runs/<id>/ with run.json giving `reason`, written the same atomic way.

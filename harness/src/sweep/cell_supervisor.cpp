@@ -10,6 +10,7 @@
 #include "record/host_info.hpp"
 #include "record/results_dir.hpp"
 #include "record/run_record.hpp"
+#include "record/timing_stats.hpp"
 #include "sweep/cell_runner.hpp"
 #include "track/track.hpp"
 #include "util/escape.hpp"
@@ -28,41 +29,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Per-frame times of the plugin's process() call only (steady clock, ns → ms), and the stages.
-nlohmann::json timing_summary(const FrameStream& r, const nlohmann::json& result, const ChildResult& child) {
-    std::vector<double> ms;
+// Per-frame times of the plugin's process() call only (record/timing_stats.hpp: after the warm-up
+// frames, dropped frames counted, not timed), and what the child and its loop cost around it.
+nlohmann::json timing_summary(const FrameStream& r, const nlohmann::json& result, const ChildResult& child, const TimingSpec& spec) {
+    nlohmann::json j = timing_statistics(r.frames, spec);
     double timed_ns = 0, read_ns = 0;
-    std::vector<std::string> order;
-    std::map<std::string, double> stage_ns;
     for (const FrameRecord& f : r.frames) {
-        ms.push_back(static_cast<double>(f.process_ns) * 1e-6);
         timed_ns += static_cast<double>(f.process_ns);
         read_ns += static_cast<double>(f.read_ns);
-        for (const auto& [name, ns] : f.stages) {
-            if (!stage_ns.count(name)) order.push_back(name);
-            stage_ns[name] += static_cast<double>(ns);
-        }
     }
-    const double n = static_cast<double>(std::max<std::size_t>(1, ms.size()));
-    nlohmann::json stages = nlohmann::json::array();
-    for (const std::string& s : order) stages.push_back({{"stage", s}, {"mean_ms", stage_ns[s] * 1e-6 / n}});
-    const metrics::ErrorStats stats = ms.empty() ? metrics::ErrorStats{} : metrics::compute_stats(ms);  // numpy semantics
+    const double n = static_cast<double>(std::max<std::size_t>(1, r.frames.size()));
     const auto number = [&](const char* key) {
         return result.is_object() && result.contains(key) && result[key].is_number() ? result[key].get<double>() : 0.0;
     };
+    j["frames"] = j["frames_timed"];
+    j["timed_s"] = timed_ns * 1e-9;
+    j["read_s"] = read_ns * 1e-9;
+    j["read_ms_per_frame"] = read_ns * 1e-6 / n;
+    j["child_wall_s"] = child.wall_s;
+    j["peak_rss_mb"] = std::max(static_cast<double>(child.peak_rss_kb), number("peak_rss_kb")) / 1024.0;
     const double loop_wall_s = number("loop_wall_ns") * 1e-9;
-    nlohmann::json j{{"frames", ms.size()},
-                     {"mean_ms", stats.mean},
-                     {"median_ms", stats.median},
-                     {"p95_ms", ms.empty() ? 0.0 : metrics::percentile_nearest_rank(ms, 0.95)},
-                     {"max_ms", stats.max},
-                     {"fps", stats.mean > 0 ? 1000.0 / stats.mean : 0.0},
-                     {"stages", stages},
-                     {"timed_s", timed_ns * 1e-9},
-                     {"read_s", read_ns * 1e-9},
-                     {"read_ms_per_frame", read_ns * 1e-6 / n},
-                     {"child_wall_s", child.wall_s},
-                     {"peak_rss_mb", std::max(static_cast<double>(child.peak_rss_kb), number("peak_rss_kb")) / 1024.0}};
     if (loop_wall_s > 0) {
         j["loop_wall_s"] = loop_wall_s;
         // What the harness costs around the plugin beyond reading frames: hand-over, streaming, bookkeeping.
@@ -170,7 +156,8 @@ std::string verdict(bool ran, const std::string& not_run_reason, const ChildResu
 }
 
 // Runs the cell's child unless `not_run_reason` is given, then turns whatever it left into runs/<id>/.
-CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason, const std::atomic<bool>* cancel) {
+CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_run_reason, const std::atomic<bool>* cancel,
+                        int pinned_core) {
     const fs::path work = out / "runs" / ".work" / cell.id;
     const fs::path final_dir = out / "runs" / cell.id;
     fs::remove_all(work);
@@ -188,6 +175,7 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
         limits.log = work / "child.log";
         limits.cancel = cancel;
         limits.contain = true;
+        limits.cpu = pinned_core;
         child = run_worker_limited({"cell-exec", work.string()}, limits);
         ran = true;
         if (child.cancelled) {  // the user stopped the sweep: not a result, the cell stays to do
@@ -234,7 +222,12 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
         if (o.reason.empty() && has_gt && metrics.empty()) o.reason = "the run could not be evaluated: " + evaluation_error;
     }
     o.ok = o.reason.empty();  // a failed row keeps no metrics (below): it ranks nothing
-    const nlohmann::json timing = timing_summary(frames, result, child);
+    const nlohmann::json timing = timing_summary(frames, result, child, cell.timing);
+    // The child's CPU affinity as it saw it (informational: written by the process that runs plugin code).
+    nlohmann::json affinity = nlohmann::json::array();
+    if (result.is_object() && result.contains("affinity") && result["affinity"].is_array() && result["affinity"].size() <= 4096)
+        for (const auto& c : result["affinity"])
+            if (c.is_number_unsigned()) affinity.push_back(c);
 
     RunRecordFields record;
     record.cell = cell;
@@ -243,6 +236,7 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     record.frames = frames.frames.size();
     record.frames_expected = unsigned_field(sequence, "frames_to_run");
     record.lost_frames = frames.lost_frames;
+    record.dropped_frames = frames.dropped_frames;
     record.plugin = plugin;
     record.sequence = sequence;
     record.started = started;
@@ -250,6 +244,7 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
     record.child_outcome = ran ? child.describe() : "not started";
     record.processes_left_behind = child.left_behind;
     record.timing = timing;
+    record.timing_protocol = timing_protocol(cell.timing, cell.limits.threads, affinity, pinned_core);
     record.metrics = metrics;
     record.evaluation = evaluation_error.empty() ? evaluation : nlohmann::json{{"error", evaluation_error}};
     if (fs::exists(work / "child.log")) keep_log_tail(work / "child.log", 64 * 1024);
@@ -264,10 +259,12 @@ CellOutcome finish_cell(const Cell& cell, const fs::path& out, std::string not_r
 
 bool cell_finished(const fs::path& out, const std::string& id) { return record_problem(ResultsDir(out).run_dir(id), id).empty(); }
 
-CellOutcome run_cell(const Cell& cell, const fs::path& out, const std::atomic<bool>* cancel) { return finish_cell(cell, out, "", cancel); }
+CellOutcome run_cell(const Cell& cell, const fs::path& out, const std::atomic<bool>* cancel, int pinned_core) {
+    return finish_cell(cell, out, "", cancel, pinned_core);
+}
 
 CellOutcome record_unrun_cell(const Cell& cell, const fs::path& out, const std::string& reason) {
-    return finish_cell(cell, out, reason, nullptr);
+    return finish_cell(cell, out, reason, nullptr, -1);
 }
 
 }  // namespace vobench

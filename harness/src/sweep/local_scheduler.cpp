@@ -194,7 +194,11 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
     std::atomic<std::size_t> next{0}, failed{0}, ran{0};
     std::mutex error_mutex;
     std::string fatal;
-    auto worker = [&] {
+    // -j N with N cells of one thread each on at least N cores: worker j's cells run on the j-th CPU
+    // this process may use, so two cells never share a core (recorded as each cell's pinned_core).
+    const std::vector<int> cpus = allowed_cpus();
+    const bool pin = options.jobs >= 2 && static_cast<std::size_t>(options.jobs) <= cpus.size();
+    auto worker = [&](int slot) {
         for (std::size_t k; (k = next++) < todo.size();) {
             {
                 std::lock_guard<std::mutex> lock(error_mutex);
@@ -202,7 +206,8 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
             }
             progress.started();
             try {
-                const CellOutcome o = run_cell(todo[k], options.out, &g_interrupted);
+                const int core = pin && todo[k].limits.threads == 1 ? cpus[static_cast<std::size_t>(slot)] : -1;
+                const CellOutcome o = run_cell(todo[k], options.out, &g_interrupted, core);
                 if (o.interrupted) {
                     progress.stopped();
                     continue;
@@ -217,7 +222,7 @@ SweepTally run_local(const std::vector<Cell>& cells, const SweepOptions& options
         }
     };
     std::vector<std::thread> pool;
-    for (int j = 0; j < std::max(1, options.jobs); ++j) pool.emplace_back(worker);
+    for (int j = 0; j < std::max(1, options.jobs); ++j) pool.emplace_back(worker, j);
     for (std::thread& t : pool) t.join();
     progress.end();
     if (!fatal.empty()) throw std::runtime_error("the sweep stopped: " + fatal);

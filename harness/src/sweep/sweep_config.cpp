@@ -347,7 +347,7 @@ SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& regist
     const YAML::Node root = r.load();
     r.only_keys(root,
                 {"name", "output", "seed", "repeats", "seeds", "frames", "datasets", "algorithms", "protocol", "rank_by", "limits",
-                 "backend", "criteria"},
+                 "backend", "criteria", "timing"},
                 "the configuration");
     SweepConfig c;
     c.file = file;
@@ -405,6 +405,15 @@ SweepConfig load_sweep_config(const fs::path& file, const PluginRegistry& regist
         if (c.limits.timeout_s < 1) r.fail(l["timeout"], "timeout must be at least 1 s");
         if (c.limits.memory_mb < 64) r.fail(l["memory_mb"], "memory_mb must be at least 64");
         if (c.limits.threads < 1) r.fail(l["threads"], "threads must be at least 1");
+    }
+    if (const YAML::Node t = root["timing"]) {  // `timing: realtime`, or {mode, speed, warmup_frames}
+        const YAML::Node mode = t.IsMap() ? t["mode"] : t;
+        if (t.IsMap()) r.only_keys(t, {"mode", "speed", "warmup_frames"}, "timing");
+        if (mode) c.timing.mode = r.scalar<std::string>(mode, "timing mode");
+        if (c.timing.mode != "offline" && c.timing.mode != "realtime") r.fail(mode ? mode : t, "timing mode must be offline or realtime");
+        if (t.IsMap() && t["speed"]) c.timing.speed = r.scalar<double>(t["speed"], "speed");
+        if (!(c.timing.speed > 0 && c.timing.speed <= 1000)) r.fail(t["speed"], "speed must be in (0, 1000]");
+        if (t.IsMap() && t["warmup_frames"]) c.timing.warmup_frames = r.scalar<uint64_t>(t["warmup_frames"], "warmup_frames");
     }
     if (root["backend"]) {
         c.backend = r.scalar<std::string>(root["backend"], "backend");

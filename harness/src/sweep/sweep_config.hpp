@@ -75,6 +75,7 @@ struct SweepConfig {
     metrics::Protocol protocol;
     std::string rank_by = "ate.rmse";
     Limits limits;
+    TimingSpec timing;
     std::string backend = "local";
     std::vector<Criterion> criteria;
     nlohmann::json source;  // the whole file as JSON, for the record

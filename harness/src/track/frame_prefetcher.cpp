@@ -1,5 +1,7 @@
 #include "track/frame_prefetcher.hpp"
 
+#include <ctime>
+
 #include "track/frame_cache.hpp"
 
 namespace vobench {
@@ -50,6 +52,8 @@ void FramePrefetcher::run() {
         std::unique_ptr<OwnedFrame> frame;
         try {
             frame = read(i, from_cache);
+            timespec cpu{};
+            if (::clock_gettime(CLOCK_THREAD_CPUTIME_ID, &cpu) == 0) reader_cpu_ns_ = int64_t{cpu.tv_sec} * 1000000000 + cpu.tv_nsec;
         } catch (...) {
             std::lock_guard<std::mutex> lock(mutex_);
             error_ = std::current_exception();

@@ -9,6 +9,7 @@
 
 #include "abi/instances.hpp"
 
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -47,6 +48,9 @@ public:
 
     // The next frame in order; nullptr after the last. Rethrows the reader's error at its frame.
     std::unique_ptr<OwnedFrame> next();
+    // CPU time the reading thread has used, as of its last finished frame (0 without a thread): what
+    // the process's CPU clock counts besides the plugin.
+    int64_t reader_cpu_ns() const { return reader_cpu_ns_.load(); }
 
 private:
     void run();
@@ -62,6 +66,7 @@ private:
     std::deque<std::unique_ptr<OwnedFrame>> queue_;
     std::exception_ptr error_;
     bool done_ = false, stop_ = false;
+    std::atomic<int64_t> reader_cpu_ns_{0};
     std::thread thread_;
 };
 

@@ -11,6 +11,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <limits>
 #include <unordered_map>
 #include <unordered_set>
@@ -71,6 +72,13 @@ std::string check_names(const FrameRecord& rec, std::unordered_set<std::string>&
     return "";
 }
 
+// CPU time of this process, all threads (CLOCK_PROCESS_CPUTIME_ID), ns.
+int64_t process_cpu_ns() {
+    timespec t{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return int64_t{t.tv_sec} * 1000000000 + t.tv_nsec;
+}
+
 }  // namespace
 
 TrackResult run_track(const TrackOptions& options, const PluginRegistry& registry) {
@@ -99,6 +107,11 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     }
     std::unordered_set<std::string> names_seen;
     double last_stamp = -std::numeric_limits<double>::infinity();
+    // Real time: frame i arrives at (stamp_i - stamp_0) / speed on a clock that the plugin's measured
+    // process() times advance; the plugin is free again at its frame's arrival plus that time. A
+    // clock of measured durations, not of sleeps: reading (decoding PNGs) cannot slow the stream down.
+    const bool realtime = options.timing.mode == "realtime";
+    double first_stamp = 0, free_at = -std::numeric_limits<double>::infinity();
     FramePrefetcher frames(dataset, count, options.prefetch_depth, cache.get());  // decoding overlaps the plugin, on another thread
     const auto loop_start = std::chrono::steady_clock::now();
     for (uint64_t i = 0; i < count; ++i) {
@@ -118,13 +131,28 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
             break;
         }
         last_stamp = frame.timestamp;
+        if (i == 0) first_stamp = frame.timestamp;
+        const double arrival = (frame.timestamp - first_stamp) / options.timing.speed;
+        if (realtime && arrival < free_at) {
+            FrameRecord rec;
+            rec.index = i;
+            rec.stamp = frame.timestamp;
+            rec.read_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - r0).count();
+            rec.dropped = true;
+            ++result.dropped_frames;
+            if (options.on_frame) options.on_frame(rec, metrics::StampedPose{});
+            result.frames.push_back(std::move(rec));
+            continue;
+        }
         vobench_pose pose{};
         pose.struct_size = sizeof(pose);
         vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
         odometry.host().begin_call();
+        const int64_t cpu0 = process_cpu_ns() - frames.reader_cpu_ns();
         const auto t0 = std::chrono::steady_clock::now();
         const vobench_status status = odometry.process(frame, pose, tracking);
         const auto t1 = std::chrono::steady_clock::now();
+        const int64_t cpu1 = process_cpu_ns() - frames.reader_cpu_ns();
         if (status != VOBENCH_OK) {
             result.error = fmt::format("plugin '{}' failed at frame {} ({}): {}", odometry.plugin().name(), i, status_name(status),
                                        odometry.last_error());
@@ -135,6 +163,8 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         rec.index = i;
         rec.stamp = frame.timestamp;
         rec.process_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
+        rec.cpu_ns = std::max<int64_t>(0, cpu1 - cpu0);
+        free_at = arrival + static_cast<double>(rec.process_ns) * 1e-9;
         rec.tracking = tracking;
         rec.stages = odometry.host().stage_ns();
         rec.counters = odometry.host().counters();
@@ -193,7 +223,9 @@ void write_track_outputs(const TrackResult& result, const std::filesystem::path&
     // column keeps this linear in what the plugin emitted.
     std::vector<std::string> stages, counters;
     std::unordered_map<std::string, std::size_t> stage_column, counter_column;
+    bool any_cpu = false;
     for (const FrameRecord& f : result.frames) {
+        any_cpu |= f.cpu_ns >= 0;
         for (const auto& [name, ns] : f.stages)
             if (stage_column.emplace(name, stages.size()).second) stages.push_back(name);
         for (const auto& [name, v] : f.counters)
@@ -208,10 +240,16 @@ void write_track_outputs(const TrackResult& result, const std::filesystem::path&
     std::string csv = "index,stamp,process_ms,read_ms,status";
     for (const auto& s : stages) csv += ",stage_" + column_name(s) + "_ms";
     for (const auto& c : counters) csv += ",count_" + column_name(c);
+    if (any_cpu) csv += ",cpu_ms";
     csv += '\n';
     static const char* kStatus[] = {"ok", "lost", "failed"};
     std::vector<std::string> row_stages, row_counters;
     for (const FrameRecord& f : result.frames) {
+        if (f.dropped) {  // not given to the plugin: no time, no stages
+            csv += fmt::format("{},{},,{},dropped{}{}\n", f.index, f.stamp, static_cast<double>(f.read_ns) * 1e-6,
+                               std::string(stages.size() + counters.size(), ','), any_cpu ? "," : "");
+            continue;
+        }
         csv += fmt::format("{},{},{},{},{}", f.index, f.stamp, static_cast<double>(f.process_ns) * 1e-6,
                            static_cast<double>(f.read_ns) * 1e-6, f.tracking >= 0 && f.tracking <= 2 ? kStatus[f.tracking] : "unknown");
         row_stages.assign(stages.size(), "0");
@@ -220,6 +258,7 @@ void write_track_outputs(const TrackResult& result, const std::filesystem::path&
         for (const auto& [name, v] : f.counters) row_counters[counter_column[name]] = fmt::format("{}", v);
         for (const auto& v : row_stages) csv += "," + v;
         for (const auto& v : row_counters) csv += "," + v;
+        if (any_cpu) csv += f.cpu_ns >= 0 ? fmt::format(",{}", static_cast<double>(f.cpu_ns) * 1e-6) : ",";
         csv += '\n';
     }
     write_file_atomic(dir / "timing.csv", csv);

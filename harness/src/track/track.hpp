@@ -9,6 +9,7 @@
 #include "abi/instances.hpp"
 #include "abi/plugin_registry.hpp"
 #include "metrics/evaluation.hpp"
+#include "record/cell.hpp"
 #include "record/frame_stream.hpp"
 
 #include <filesystem>
@@ -31,6 +32,7 @@ struct TrackOptions {
     std::filesystem::path frame_cache;  // root of the decoded-frame cache; empty: no cache
     std::size_t prefetch_depth = 4;     // frames decoded ahead on another thread; 0: on this thread
     bool evaluate = true;               // false: the caller evaluates (an isolated cell's supervisor)
+    TimingSpec timing;                  // offline, or realtime (frames dropped while the plugin is busy)
     // Called once the sequence is open and the plugin started, and after each frame, outside the
     // timed window: an isolated cell streams its results to disk so that a crash loses nothing.
     std::function<void(const vobench_sequence_info&, const PluginLibrary& odometry)> on_start;
@@ -40,8 +42,9 @@ struct TrackOptions {
 struct TrackResult {
     metrics::Trajectory estimate;
     std::vector<FrameRecord> frames;
-    std::size_t failed_frames = 0;  // frames whose tracking status was not OK
-    std::string error;              // set when the plugin or reader failed and the run stopped
+    std::size_t failed_frames = 0;   // frames whose tracking status was not OK
+    std::size_t dropped_frames = 0;  // real-time mode: arrived while the plugin was busy
+    std::string error;               // set when the plugin or reader failed and the run stopped
     std::optional<metrics::Evaluation> evaluation;
     std::string evaluation_error;  // why there is no evaluation (no ground truth, no overlap ...)
     std::string sequence, sensor;
@@ -65,8 +68,9 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
 // quaternion, naming the row.
 std::string check_ground_truth(const vobench_sequence_info& info);
 
-// trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, read_ms, status, one column
-// per stage in ms, one per counter) into `dir`, each written atomically.
+// trajectory.txt (TUM, full precision) and timing.csv (index, stamp, process_ms, read_ms, status — ok,
+// lost, failed or dropped —, one column per stage in ms, one per counter, then cpu_ms) into `dir`, each
+// written atomically.
 void write_track_outputs(const TrackResult& result, const std::filesystem::path& dir);
 
 // The ground truth of an open sequence as a trajectory.

@@ -3,6 +3,7 @@
 #include <boost/dll/runtime_symbol_info.hpp>
 
 #include <fcntl.h>
+#include <sched.h>
 #include <spawn.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
@@ -10,6 +11,7 @@
 #include <cctype>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
@@ -191,8 +193,9 @@ ChildResult spawn_limited(std::vector<std::string> argv_storage, const ChildLimi
     const std::string tag = "VOBENCH_CELL_TAG=" + std::to_string(::getpid()) + "." + std::to_string(serial++);
     std::vector<std::string> env_storage;
     for (char** e = environ; *e; ++e)
-        if (std::strncmp(*e, "VOBENCH_CELL_TAG=", 17) != 0) env_storage.emplace_back(*e);
+        if (std::strncmp(*e, "VOBENCH_CELL_TAG=", 17) != 0 && std::strncmp(*e, "VOBENCH_CELL_CPU=", 17) != 0) env_storage.emplace_back(*e);
     if (limits.contain) env_storage.push_back(tag);
+    if (limits.cpu >= 0) env_storage.push_back("VOBENCH_CELL_CPU=" + std::to_string(limits.cpu));
     std::vector<char*> envp;
     for (std::string& e : env_storage) envp.push_back(e.data());
     envp.push_back(nullptr);
@@ -333,6 +336,28 @@ ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
     ChildResult result = run_self_limited(args, limits);
     take_output(result, limits.log);
     return result;
+}
+
+std::vector<int> allowed_cpus() {
+    std::vector<int> cpus;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (::sched_getaffinity(0, sizeof(set), &set) == 0)
+        for (int c = 0; c < CPU_SETSIZE; ++c)
+            if (CPU_ISSET(c, &set)) cpus.push_back(c);
+    return cpus;
+}
+
+int pin_to_cell_cpu() {
+    const char* env = std::getenv("VOBENCH_CELL_CPU");
+    if (env == nullptr || *env == '\0') return -1;
+    char* end = nullptr;
+    const long cpu = std::strtol(env, &end, 10);
+    if (*end != '\0' || cpu < 0 || cpu >= CPU_SETSIZE) return -1;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    CPU_SET(static_cast<int>(cpu), &set);
+    return ::sched_setaffinity(0, sizeof(set), &set) == 0 ? static_cast<int>(cpu) : -1;
 }
 
 }  // namespace vobench

@@ -32,7 +32,17 @@ struct ChildLimits {
     // that orphans come back to it instead of to init.
     bool contain = false;
     uint64_t max_log_bytes = uint64_t{64} << 20;  // stdout + stderr; then SIGKILL (0: no limit)
+    // >= 0: the child is told to run on this CPU only ($VOBENCH_CELL_CPU; a cell's child pins itself
+    // before it starts a thread: pin_to_cell_cpu()).
+    int cpu = -1;
 };
+
+// In a child started with ChildLimits::cpu: pins this process to that CPU (before any thread
+// exists, so every thread inherits it). Returns the CPU, or -1 when none was asked or pinning failed.
+int pin_to_cell_cpu();
+
+// The CPUs this process may run on (sched_getaffinity).
+std::vector<int> allowed_cpus();
 
 struct ChildResult {
     bool exited = false;  // exited normally (exit_code valid)
