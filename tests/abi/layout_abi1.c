@@ -23,7 +23,7 @@ PIN(vobench_param_desc, max_value, 40);
 PIN(vobench_param_desc, choices, 48);
 PIN(vobench_param_desc, help, 56);
 
-PIN_SIZE(vobench_plugin_descriptor, 88);
+PIN_SIZE(vobench_plugin_descriptor, 96);
 PIN(vobench_plugin_descriptor, struct_size, 0);
 PIN(vobench_plugin_descriptor, abi_version, 4);
 PIN(vobench_plugin_descriptor, api_version, 8);
@@ -37,6 +37,7 @@ PIN(vobench_plugin_descriptor, param_count, 56);
 PIN(vobench_plugin_descriptor, params, 64);
 PIN(vobench_plugin_descriptor, dataset, 72);
 PIN(vobench_plugin_descriptor, odometry, 80);
+PIN(vobench_plugin_descriptor, filter, 88); /* API 3 */
 
 PIN_SIZE(vobench_host_services, 56);
 PIN(vobench_host_services, struct_size, 0);
@@ -132,6 +133,21 @@ PIN(vobench_odometry_api, reset, 32);
 PIN(vobench_odometry_api, last_error, 40);
 PIN(vobench_odometry_api, destroy, 48);
 PIN(vobench_odometry_api, extra_params, 56); /* API 3 */
+
+/* API 3 */
+PIN_SIZE(vobench_filter_config, 32);
+PIN(vobench_filter_config, struct_size, 0);
+PIN(vobench_filter_config, camera, 8);
+PIN(vobench_filter_config, params, 16);
+PIN(vobench_filter_config, seed, 24);
+
+PIN_SIZE(vobench_filter_api, 48);
+PIN(vobench_filter_api, struct_size, 0);
+PIN(vobench_filter_api, create, 8);
+PIN(vobench_filter_api, start, 16);
+PIN(vobench_filter_api, apply, 24);
+PIN(vobench_filter_api, last_error, 32);
+PIN(vobench_filter_api, destroy, 40);
 #endif
 
 int main(void) { return 0; }

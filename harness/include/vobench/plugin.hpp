@@ -285,6 +285,62 @@ private:
     const Host* host_ = nullptr;
 };
 
+// A filter (API 3): perturbs each frame between the reader and the odometry plugin.
+class Filter {
+public:
+    virtual ~Filter() = default;
+    // Called once before the first frame; `camera` is the frames' camera.
+    virtual void start(const vobench_camera& camera, const Params& params, uint64_t seed) = 0;
+    // The perturbed frame (the filter's own, valid until the next apply() or destruction), or nullptr
+    // to drop this frame (the plugin does not see it). Throw on error.
+    virtual const vobench_frame* apply(const vobench_frame& frame) = 0;
+
+    const Host& host() const { return *host_; }
+    void attach_host(const Host* host) { host_ = host; }
+
+private:
+    const Host* host_ = nullptr;
+};
+
+// A frame a filter owns: a deep copy of one it was given (rows packed), whose pixels it may change.
+class FrameBuffer {
+public:
+    void copy_from(const vobench_frame& in) {
+        frame_ = in;
+        frame_.struct_size = sizeof(vobench_frame);
+        copy_image(*in.color, color_bytes_, color_);
+        copy_image(*in.depth, depth_bytes_, depth_);
+        frame_.color = &color_;
+        frame_.depth = &depth_;
+    }
+    const vobench_frame& frame() const { return frame_; }
+    vobench_frame& frame() { return frame_; }
+    // Rows of width * bytes-per-pixel, no padding.
+    uint8_t* color() { return color_bytes_.data(); }
+    uint8_t* depth() { return depth_bytes_.data(); }
+    const vobench_image& color_image() const { return color_; }
+    const vobench_image& depth_image() const { return depth_; }
+
+private:
+    static int bytes_per_pixel(vobench_pixel_format f) {
+        return f == VOBENCH_PIXEL_GRAY8 ? 1 : f == VOBENCH_PIXEL_DEPTH_U16 ? 2 : f == VOBENCH_PIXEL_DEPTH_F32 ? 4 : 3;
+    }
+    static void copy_image(const vobench_image& in, std::vector<uint8_t>& bytes, vobench_image& out) {
+        const std::size_t row = static_cast<std::size_t>(in.width) * static_cast<std::size_t>(bytes_per_pixel(in.format));
+        bytes.resize(row * static_cast<std::size_t>(in.height));
+        for (int y = 0; y < in.height; ++y)
+            std::memcpy(bytes.data() + row * static_cast<std::size_t>(y),
+                        static_cast<const uint8_t*>(in.data) + static_cast<std::ptrdiff_t>(y) * in.stride_bytes, row);
+        out = in;
+        out.struct_size = sizeof(vobench_image);
+        out.stride_bytes = static_cast<int32_t>(row);
+        out.data = bytes.data();
+    }
+    std::vector<uint8_t> color_bytes_, depth_bytes_;
+    vobench_image color_{}, depth_{};
+    vobench_frame frame_{};
+};
+
 namespace detail {
 
 // Runs `body`, turning any exception into a status and a stored message.
@@ -531,6 +587,34 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
     }
 };
 
+template <typename Impl>
+struct FilterBridge : BridgeBase<Impl, vobench_filter, VOBENCH_KIND_FILTER> {
+    using Base = BridgeBase<Impl, vobench_filter, VOBENCH_KIND_FILTER>;
+    using Base::self;
+
+    static vobench_status start(vobench_filter* h, const vobench_filter_config* config) noexcept {
+        auto* s = self(h);
+        return guarded(s->error, [&] {
+            if (config == nullptr || config->camera == nullptr)
+                throw Error(VOBENCH_INVALID_ARGUMENT, "start() needs a configuration with a camera");
+            s->impl->start(*config->camera, Params(Base::store().info.params, config->params), config->seed);
+        });
+    }
+    static vobench_status apply(vobench_filter* h, const vobench_frame* in, const vobench_frame** out) noexcept {
+        auto* s = self(h);
+        return guarded(s->error, [&] {
+            if (in == nullptr || out == nullptr) throw Error(VOBENCH_INVALID_ARGUMENT, "apply() needs a frame and an output pointer");
+            *out = s->impl->apply(*in);
+        });
+    }
+    static const vobench_plugin_descriptor* entry(uint32_t abi, uint32_t api) noexcept {
+        if (api < 3) return nullptr;  // a filter needs a host that knows filters
+        static const vobench_filter_api table = {sizeof(vobench_filter_api), &Base::create, &start, &apply,
+                                                 &Base::last_error,          &Base::destroy};
+        return Base::entry_with(abi, api, &table, &vobench_plugin_descriptor::filter);
+    }
+};
+
 }  // namespace detail
 }  // namespace vobench::sdk
 
@@ -545,6 +629,12 @@ struct DatasetBridge : BridgeBase<Impl, vobench_dataset, VOBENCH_KIND_DATASET> {
     extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version,   \
                                                                                        uint32_t host_api_version) { \
         return ::vobench::sdk::detail::DatasetBridge<Class>::entry(host_abi_version, host_api_version);             \
+    }
+
+#define VOBENCH_FILTER_PLUGIN(Class)                                                                                \
+    extern "C" VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version,   \
+                                                                                       uint32_t host_api_version) { \
+        return ::vobench::sdk::detail::FilterBridge<Class>::entry(host_abi_version, host_api_version);              \
     }
 
 #endif  // VOBENCH_PLUGIN_HPP

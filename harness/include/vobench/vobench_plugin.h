@@ -66,7 +66,9 @@ extern "C" {
 /* API history: 1 — first release; 2 — vobench_sequence_info gains gt_position_sigma_m and
  * gt_rotation_sigma_deg (the reader's declared ground-truth accuracy); 3 — vobench_dataset_api and
  * vobench_odometry_api gain extra_params (parameters that depend on other parameters' values, as a
- * bridge to another language has: the Python bridge's module=FILE declares its own). */
+ * bridge to another language has: the Python bridge's module=FILE declares its own); a third kind,
+ * VOBENCH_KIND_FILTER (a perturbation between reader and algorithm), with the descriptor's `filter`
+ * table appended. */
 #define VOBENCH_API_VERSION 3u
 
 /* The name of the one exported function, with the ABI generation in it. */
@@ -103,6 +105,7 @@ typedef int32_t vobench_status;
 typedef int32_t vobench_plugin_kind;
 #define VOBENCH_KIND_DATASET 1  /* a dataset reader: yields RGB-D frames and ground truth */
 #define VOBENCH_KIND_ODOMETRY 2 /* an odometry algorithm: consumes frames, yields poses */
+#define VOBENCH_KIND_FILTER 3   /* API 3: a perturbation between reader and algorithm (noise, holes, drops …) */
 
 typedef int32_t vobench_param_type;
 #define VOBENCH_PARAM_BOOL 1   /* "true"/"false" (also 1/0, on/off, yes/no) */
@@ -125,6 +128,7 @@ typedef struct vobench_param_desc {
 
 struct vobench_dataset_api;
 struct vobench_odometry_api;
+struct vobench_filter_api;
 
 /* The static descriptor the entry function returns. Every pointer is [static]. */
 typedef struct vobench_plugin_descriptor {
@@ -139,9 +143,11 @@ typedef struct vobench_plugin_descriptor {
     const char* url;         /* home page or paper; may be NULL */
     uint32_t param_count;
     const vobench_param_desc* params; /* param_count elements (stride: params->struct_size); NULL if 0 */
-    /* Exactly one of these is non-NULL, according to `kind`. */
+    /* Exactly one of these is non-NULL, according to `kind` (`filter`: API 3, read only when
+     * struct_size covers it; a filter's descriptor leaves dataset and odometry NULL). */
     const struct vobench_dataset_api* dataset;
     const struct vobench_odometry_api* odometry;
+    const struct vobench_filter_api* filter;
 } vobench_plugin_descriptor;
 
 /* The entry point. The host passes the ABI and API versions it speaks. The plugin returns its
@@ -333,6 +339,38 @@ typedef struct vobench_odometry_api {
      * validates the parameters it passes to start() against both tables. */
     vobench_status (*extra_params)(vobench_odometry* self, const vobench_params* given, uint32_t* count, const vobench_param_desc** params);
 } vobench_odometry_api;
+
+/* ===== Filters (API 3) =========================================================================== */
+
+/* A filter sits between the reader and the odometry plugin and perturbs each frame — noise, holes,
+ * blur, drops — so that a method's degradation can be measured on any data set. The host runs the
+ * filters of a cell in order on every frame before it reaches the plugin, outside the timed window. */
+typedef struct vobench_filter vobench_filter; /* opaque, [plugin-owned] */
+
+typedef struct vobench_filter_config {
+    uint32_t struct_size;
+    const vobench_camera* camera; /* [host-owned], read during start() only: the frames' camera */
+    const vobench_params* params; /* [host-owned], read during start() only */
+    uint64_t seed;                /* for the perturbation's randomness: same seed, same frames */
+} vobench_filter_config;
+
+typedef struct vobench_filter_api {
+    uint32_t struct_size;
+    /* Create an instance; NULL only on allocation failure. */
+    vobench_filter* (*create)(const vobench_host_services* host);
+    /* Configure before the first frame. Called once per instance. */
+    vobench_status (*start)(vobench_filter* self, const vobench_filter_config* config);
+    /* Perturb frame `in` ([host-owned], valid until the frame has reached the odometry plugin) into
+     * *out: a frame of the filter's ([plugin-owned], valid until the next apply() or destroy() on this
+     * instance), or `in` itself when it leaves the frame as it is; with the camera's width and height,
+     * the same index, and pixel formats a reader may deliver. Or set *out = NULL to drop the frame (it is
+     * then not given to the plugin and has no pose). Frames come in order, each once. */
+    vobench_status (*apply)(vobench_filter* self, const vobench_frame* in, const vobench_frame** out);
+    /* As for the other kinds: [plugin-owned], valid until the next call on `self`; never NULL. */
+    const char* (*last_error)(vobench_filter* self);
+    /* Free everything the instance owns. `self` may be NULL. */
+    void (*destroy)(vobench_filter* self);
+} vobench_filter_api;
 
 #ifdef __cplusplus
 } /* extern "C" */

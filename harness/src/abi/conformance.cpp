@@ -150,6 +150,33 @@ void check_odometry(const PluginPtr& plugin, const ParamMap& given, Report& r) {
     api->destroy(h);
 }
 
+void check_filter(const PluginPtr& plugin, const ParamMap& given, Report& r) {
+    const vobench_filter_api* api = plugin->descriptor().filter;
+    HostContext host(plugin->name());
+    for (int round = 1; round <= 2; ++round) {
+        r.step("create/destroy #" + std::to_string(round));
+        vobench_filter* h = api->create(host.services());
+        r.check(h != nullptr, "create #" + std::to_string(round), "create() returned NULL");
+        if (h) api->destroy(h);
+    }
+    api->destroy(nullptr);
+    r.pass("destroy(NULL)");
+    r.step("start and filter 5 synthetic frames");
+    try {
+        FilterInstance f(plugin);
+        const vobench_camera camera{sizeof(vobench_camera), 160, 120, 130.0, 130.0, 79.5, 59.5, VOBENCH_DISTORTION_NONE, 0, {0}};
+        f.start(camera, given, 1);
+        r.pass("start");
+        for (int k = 0; k < 5; ++k) {
+            SyntheticFrame in(k, 2 * k);
+            const vobench_frame* out = f.apply(in.frame);  // checks index, size, formats, stamps
+            r.pass("frame " + std::to_string(k) + (out ? " filtered, well-formed" : " dropped"));
+        }
+    } catch (const std::exception& e) {
+        r.fail("filter the synthetic frames", e.what());
+    }
+}
+
 void check_dataset(const PluginPtr& plugin, const ConformanceOptions& options, Report& r) {
     check_extra_params<DatasetInstance>(plugin, options.params, r);
     const vobench_dataset_api* api = plugin->descriptor().dataset;
@@ -228,6 +255,8 @@ int run_conformance(const ConformanceOptions& options, std::ostream& out) {
     for (const sdk::Param& p : plugin->params()) r.check(!p.help.empty(), "parameter '" + p.name + "' documented", "no help text");
     if (d.kind == VOBENCH_KIND_ODOMETRY)
         check_odometry(plugin, options.params, r);
+    else if (d.kind == VOBENCH_KIND_FILTER)
+        check_filter(plugin, options.params, r);
     else
         check_dataset(plugin, options, r);
     out << (r.failures() == 0 ? "PASS " : "FAIL ") << options.library.string() << " (" << r.failures() << " failures)" << std::endl;

@@ -211,4 +211,55 @@ void OdometryInstance::reset() {
         throw PluginCallError("plugin '" + plugin_->name() + "': reset failed (" + status_name(s) + "): " + last_error(), s);
 }
 
+// ----- filters -----------------------------------------------------------------------------------
+
+FilterInstance::FilterInstance(PluginPtr plugin)
+    : plugin_(std::move(plugin)), api_(plugin_->descriptor().filter), host_(std::make_unique<HostContext>(plugin_->name())) {
+    handle_ = api_->create(host_->services());
+    if (handle_ == nullptr) throw PluginCallError("filter '" + plugin_->name() + "': create() returned NULL", VOBENCH_NO_MEMORY);
+}
+
+FilterInstance::~FilterInstance() { api_->destroy(handle_); }
+
+void FilterInstance::start(const vobench_camera& camera, const ParamMap& params, uint64_t seed) {
+    validate_params(plugin_->info(), params);
+    camera_ = camera;
+    const ParamView view(params);
+    vobench_filter_config config{};
+    config.struct_size = sizeof(config);
+    config.camera = &camera_;
+    config.params = view.get();
+    config.seed = seed;
+    if (vobench_status s = api_->start(handle_, &config); s != VOBENCH_OK) {
+        const char* message = api_->last_error(handle_);
+        throw PluginCallError(
+            "filter '" + plugin_->name() + "': start failed (" + status_name(s) + "): " + (message && *message ? message : "no message"),
+            s);
+    }
+}
+
+const vobench_frame* FilterInstance::apply(const vobench_frame& in) {
+    const vobench_frame* out = nullptr;
+    host_->begin_call();
+    if (vobench_status s = api_->apply(handle_, &in, &out); s != VOBENCH_OK) {
+        const char* message = api_->last_error(handle_);
+        throw PluginCallError("filter '" + plugin_->name() + "': apply failed at frame " + std::to_string(in.index) + " (" +
+                                  status_name(s) + "): " + (message && *message ? message : "no message"),
+                              s);
+    }
+    if (out == nullptr) return nullptr;
+    std::string why;
+    if (out->color == nullptr || out->depth == nullptr)
+        why = "an incomplete frame";
+    else if (out->index != in.index)
+        why = "frame " + std::to_string(out->index) + " for frame " + std::to_string(in.index);
+    else if (!std::isfinite(out->timestamp) || !std::isfinite(out->depth_timestamp))
+        why = "a stamp that is not finite";
+    else
+        why = frame_problem(*out, camera_);
+    if (!why.empty())
+        throw PluginCallError("filter '" + plugin_->name() + "' gave " + why + " at frame " + std::to_string(in.index), VOBENCH_ERROR);
+    return out;
+}
+
 }  // namespace vobench

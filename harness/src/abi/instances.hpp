@@ -110,4 +110,28 @@ private:
     std::optional<PluginInfo> params_;
 };
 
+// A filter (API 3): perturbs frames between reader and odometry plugin.
+class FilterInstance {
+public:
+    explicit FilterInstance(PluginPtr plugin);
+    ~FilterInstance();
+    FilterInstance(const FilterInstance&) = delete;
+    FilterInstance& operator=(const FilterInstance&) = delete;
+
+    // Validates `params` against the table, then starts; `camera` is kept to check the frames it gives.
+    void start(const vobench_camera& camera, const ParamMap& params, uint64_t seed);
+    // The perturbed frame (valid until the next apply() or destruction), or nullptr when the filter
+    // drops it. Throws PluginCallError when the filter fails or gives a frame that is not `in`'s
+    // (another index, a size or format that does not match the camera, a stamp that is not finite).
+    const vobench_frame* apply(const vobench_frame& in);
+    const PluginLibrary& plugin() const { return *plugin_; }
+
+private:
+    PluginPtr plugin_;
+    const vobench_filter_api* api_;
+    std::unique_ptr<HostContext> host_;
+    vobench_filter* handle_ = nullptr;
+    vobench_camera camera_{};
+};
+
 }  // namespace vobench

@@ -15,6 +15,7 @@ constexpr std::size_t kMinDescriptorSize = offsetof(vobench_plugin_descriptor, o
 constexpr std::size_t kMinParamSize = offsetof(vobench_param_desc, help) + sizeof(const char*);
 constexpr std::size_t kMinDatasetApiSize = offsetof(vobench_dataset_api, destroy) + sizeof(void*);
 constexpr std::size_t kMinOdometryApiSize = offsetof(vobench_odometry_api, destroy) + sizeof(void*);
+constexpr std::size_t kMinFilterApiSize = offsetof(vobench_filter_api, destroy) + sizeof(void*);
 
 bool is_identifier(const char* s) {
     if (s == nullptr || *s == '\0') return false;
@@ -129,6 +130,7 @@ const char* kind_name(vobench_plugin_kind kind) {
     switch (kind) {
         case VOBENCH_KIND_DATASET: return "dataset";
         case VOBENCH_KIND_ODOMETRY: return "odometry";
+        case VOBENCH_KIND_FILTER: return "filter";
         default: return "unknown";
     }
 }
@@ -163,6 +165,14 @@ std::string validate_descriptor(const vobench_plugin_descriptor* d) {
                    std::to_string(kMinOdometryApiSize);
         if (!t->create || !t->start || !t->process || !t->last_error || !t->destroy)
             return "odometry table has a NULL function (only reset may be NULL)";
+    } else if (d->kind == VOBENCH_KIND_FILTER) {
+        if (!VOBENCH_HAS_FIELD(d, vobench_plugin_descriptor, filter) || d->filter == nullptr)
+            return "filter plugin without a filter table (descriptor of API 3 or later needed)";
+        if (d->dataset != nullptr || d->odometry != nullptr) return "filter plugin also fills the dataset or odometry table";
+        const vobench_filter_api* t = d->filter;
+        if (t->struct_size < kMinFilterApiSize)
+            return "filter table struct_size " + std::to_string(t->struct_size) + " is smaller than " + std::to_string(kMinFilterApiSize);
+        if (!t->create || !t->start || !t->apply || !t->last_error || !t->destroy) return "filter table has a NULL function";
     } else {
         return "unknown plugin kind " + std::to_string(d->kind);
     }
@@ -210,7 +220,7 @@ std::shared_ptr<const PluginLibrary> PluginLibrary::load(const std::filesystem::
     info.table_size = info.params.size();
     if (d.kind == VOBENCH_KIND_DATASET)
         info.has_extra_params = VOBENCH_HAS_FIELD(d.dataset, vobench_dataset_api, extra_params) && d.dataset->extra_params != nullptr;
-    else
+    else if (d.kind == VOBENCH_KIND_ODOMETRY)
         info.has_extra_params = VOBENCH_HAS_FIELD(d.odometry, vobench_odometry_api, extra_params) && d.odometry->extra_params != nullptr;
     return plugin;
 }

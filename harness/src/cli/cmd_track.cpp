@@ -34,6 +34,8 @@ void add_track_command(CLI::App& app, int& exit_code) {
     static std::string cache;
     c->add_option("--frame-cache", cache, "Decoded-frame cache folder (zstd, keyed by reader, options and content)");
     c->add_flag("--json", json, "Print a JSON summary on stdout");
+    static std::vector<std::string> filters;
+    c->add_option("--filter", filters, "A filter between reader and plugin, NAME or NAME:key=value,key=value (repeatable, in order)");
     static bool realtime = false;
     c->add_flag("--realtime", realtime,
                 "Offer frames at their recorded stamps; a frame that arrives while the plugin is busy is dropped (as on a robot)");
@@ -49,6 +51,20 @@ void add_track_command(CLI::App& app, int& exit_code) {
         options.protocol = protocol.build();
         options.frame_cache = cache;
         options.timing.mode = realtime ? "realtime" : "offline";
+        options.filters.clear();
+        for (const std::string& f : filters) {
+            const auto colon = f.find(':');
+            FilterSpec spec{f.substr(0, colon), {}};
+            if (colon != std::string::npos) {
+                std::vector<std::string> items;
+                for (std::size_t b = colon + 1, e; b <= f.size(); b = e + 1) {
+                    e = std::min(f.find(',', b), f.size());
+                    if (e > b) items.push_back(f.substr(b, e - b));
+                }
+                spec.params = parse_key_values(items, "--filter");
+            }
+            options.filters.push_back(spec);
+        }
         const TrackResult r = run_track(options, PluginRegistry());
         if (!out.empty()) {
             write_track_outputs(r, out);

@@ -85,6 +85,11 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     DatasetInstance dataset(registry.load(options.dataset, VOBENCH_KIND_DATASET));
     dataset.open(options.path, options.dataset_options);
     const vobench_sequence_info& info = dataset.info();
+    std::vector<std::unique_ptr<FilterInstance>> filters;
+    for (std::size_t k = 0; k < options.filters.size(); ++k) {
+        filters.push_back(std::make_unique<FilterInstance>(registry.load(options.filters[k].plugin, VOBENCH_KIND_FILTER)));
+        filters.back()->start(*info.camera, options.filters[k].params, options.seed + 1000003 * (k + 1));
+    }
     OdometryInstance odometry(registry.load(options.algorithm, VOBENCH_KIND_ODOMETRY));
     odometry.start(*info.camera, options.params, options.seed);
 
@@ -123,20 +128,28 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
             result.error = fmt::format("reading frame {}: {}", i, e.what());
             break;
         }
-        const vobench_frame& frame = owned->frame;
-        if (!std::isfinite(frame.timestamp) || !(frame.timestamp > last_stamp)) {
-            result.error = fmt::format(
-                "reader '{}' gave frame {} the stamp {}, {}", dataset.plugin().name(), i, frame.timestamp,
-                std::isfinite(frame.timestamp) ? fmt::format("not after the previous frame's {}", last_stamp) : "not a finite number");
+        const vobench_frame* delivered = &owned->frame;
+        try {
+            for (auto& f : filters)
+                if (delivered) delivered = f->apply(*delivered);
+        } catch (const std::exception& e) {
+            result.error = e.what();
             break;
         }
-        last_stamp = frame.timestamp;
-        if (i == 0) first_stamp = frame.timestamp;
-        const double arrival = (frame.timestamp - first_stamp) / options.timing.speed;
-        if (realtime && arrival < free_at) {
+        const vobench_frame& read = owned->frame;  // the reader's stamps define the stream
+        if (!std::isfinite(read.timestamp) || !(read.timestamp > last_stamp)) {
+            result.error = fmt::format(
+                "reader '{}' gave frame {} the stamp {}, {}", dataset.plugin().name(), i, read.timestamp,
+                std::isfinite(read.timestamp) ? fmt::format("not after the previous frame's {}", last_stamp) : "not a finite number");
+            break;
+        }
+        last_stamp = read.timestamp;
+        if (i == 0) first_stamp = read.timestamp;
+        const double arrival = (read.timestamp - first_stamp) / options.timing.speed;
+        if (delivered == nullptr || (realtime && arrival < free_at)) {
             FrameRecord rec;
             rec.index = i;
-            rec.stamp = frame.timestamp;
+            rec.stamp = read.timestamp;
             rec.read_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - r0).count();
             rec.dropped = true;
             ++result.dropped_frames;
@@ -144,6 +157,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
             result.frames.push_back(std::move(rec));
             continue;
         }
+        const vobench_frame& frame = *delivered;
         vobench_pose pose{};
         pose.struct_size = sizeof(pose);
         vobench_tracking_status tracking = VOBENCH_TRACKING_OK;
@@ -161,7 +175,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         FrameRecord rec;
         rec.read_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t0 - r0).count();
         rec.index = i;
-        rec.stamp = frame.timestamp;
+        rec.stamp = read.timestamp;
         rec.process_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(t1 - t0).count();
         rec.cpu_ns = std::max<int64_t>(0, cpu1 - cpu0);
         free_at = arrival + static_cast<double>(rec.process_ns) * 1e-9;
@@ -190,7 +204,7 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
         }
         if (tracking != VOBENCH_TRACKING_OK) ++result.failed_frames;
         metrics::StampedPose sp;
-        sp.t = frame.timestamp;
+        sp.t = read.timestamp;
         sp.p = {pose.tx, pose.ty, pose.tz};
         sp.q = q.normalized();
         result.estimate.push_back(sp);

@@ -20,6 +20,12 @@
 
 namespace vobench {
 
+// One filter of the chain between reader and plugin (API 3 filter plugin).
+struct FilterSpec {
+    std::string plugin;  // name or path
+    ParamMap params;
+};
+
 struct TrackOptions {
     std::string dataset;  // reader plugin name or path
     std::string path;     // sequence folder
@@ -33,6 +39,10 @@ struct TrackOptions {
     std::size_t prefetch_depth = 4;     // frames decoded ahead on another thread; 0: on this thread
     bool evaluate = true;               // false: the caller evaluates (an isolated cell's supervisor)
     TimingSpec timing;                  // offline, or realtime (frames dropped while the plugin is busy)
+    // Run in order on every frame before the plugin sees it, outside the timed window (their time is
+    // counted as reading); filter k gets the seed seed + 1000003·(k+1). A frame a filter drops is
+    // recorded as dropped (no pose).
+    std::vector<FilterSpec> filters;
     // Called once the sequence is open and the plugin started, and after each frame, outside the
     // timed window: an isolated cell streams its results to disk so that a crash loses nothing.
     std::function<void(const vobench_sequence_info&, const PluginLibrary& odometry)> on_start;
