@@ -553,6 +553,60 @@ def schemas(args, w):
     check(f"schemas: {runs} run.json (ok and failed rows) and {boards} leaderboards validate against schemas/", runs > 50 and not bad, bad[:5])
 
 
+# ----- filters (issue #20): faults in a filter, and in the timing and filters keys of a config ---------
+
+FILTER_FAULTS = {
+    "healthy": "ok",
+    "wrong_size": r"filter 'corpus_filter' gave colour image is 32x48, the camera 64x48 at frame 3",
+    "wrong_index": r"filter 'corpus_filter' gave frame 4 for frame 3 at frame 3",
+    "crash": r"killed by signal 11 \(SIGSEGV\) at frame 3",
+    "error_status": r"filter 'corpus_filter': apply failed at frame 3 \(error\): deliberately fails at frame 3",
+    "nan_stamp": r"filter 'corpus_filter' gave a stamp that is not finite at frame 3",
+    "drop_all": r"the run could not be evaluated|fewer than",
+}
+
+
+def filter_faults(args, w):
+    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
+    seq = os.path.join(w, "empty_sequence")
+    os.makedirs(seq, exist_ok=True)
+    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    algos = [{"name": "constant_pose", "plugin": args.constant_pose}]
+    found = {}
+    for fault, pattern in FILTER_FAULTS.items():
+        out = os.path.join(w, f"filter_{fault}")
+        cfg = config(os.path.join(w, f"filter_{fault}.yaml"), f"filter {fault}", out, [reader], algos,
+                     extra=f"filters:\n  - {{plugin: {json.dumps(p('filter', fault))}}}\n")
+        r, _ = sweep(args, cfg, jobs=1)
+        rows = runs_by_algorithm(out) if os.path.isdir(os.path.join(out, "runs")) else {}
+        row = next(iter(rows.values()), None)
+        if row is None:
+            check(f"filters: {fault}", False, f"no row (exit {r.returncode}): {r.stderr[-600:]}")
+            continue
+        if pattern == "ok":
+            check(f"filters: {fault} is a healthy row", row["status"] == "ok" and r.returncode == 0, row["reason"])
+        elif fault == "drop_all":  # 3 frames reach the plugin, 27 are dropped: recorded as such, not as lost
+            check("filters: a filter that drops frames 3-29 leaves 27 dropped frames and 3 poses",
+                  row["dropped_frames"] == 27 and row["frames"] == 30, f"{row['dropped_frames']} dropped, {row['frames']} frames")
+        else:
+            ok = row["status"] == "failed" and re.search(pattern, row["reason"]) is not None and row["metrics"] == {}
+            check(f"filters: {fault} -> failed row '{row['reason'][:100]}'", ok, f"status {row['status']}, reason {row['reason']!r}")
+    check("filters: no process of any cell outlives them", not cell_processes(), f"left: {cell_processes()}")
+    # The config keys: refused where they are written.
+    bad = {
+        "an unknown timing mode": "timing: {mode: fast}\n",
+        "a speed of 0": "timing: {mode: realtime, speed: 0}\n",
+        "a filter that is an odometry plugin": f"filters:\n  - {{plugin: {json.dumps(args.constant_pose)}}}\n",
+        "a filter value out of range": "filters:\n  - {plugin: depth_holes, params: {fraction: [0.1, 7]}}\n",
+        "a filter parameter it does not have": "filters:\n  - {plugin: depth_holes, params: {depth: 1}}\n",
+    }
+    for name, extra in bad.items():
+        cfg = config(os.path.join(w, "filter_bad.yaml"), "bad", os.path.join(w, "filter_bad"), [reader], algos, extra=extra)
+        r = run([args.vobench, "run", cfg])
+        check(f"configs: {name} is refused with file:line:column", r.returncode != 0 and re.search(r"filter_bad\.yaml:\d+:\d+", r.stderr),
+              r.stderr[-400:])
+
+
 # ----- Python plugins and readers (issue #16): faults in user Python code ------------------------------
 
 PY_HEAD = "import numpy as np\nimport vobench\n\n\n"
@@ -681,7 +735,8 @@ def main():
     os.environ["VOBENCH_PROBE_CACHE"] = os.path.join(args.work, "probe-cache")
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
-    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, lock_and_cli, schemas):
+    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, lock_and_cli,
+                    schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)

@@ -14,7 +14,18 @@ int64_t Cell::frames_required() const {
     return max_frames > 0 ? std::min<int64_t>(frames_declared, static_cast<int64_t>(max_frames)) : frames_declared;
 }
 
-std::string Cell::entry_label() const { return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]"; }
+std::string Cell::base_entry_label() const { return params.empty() ? algorithm : algorithm + " [" + variant_label() + "]"; }
+
+std::string Cell::filter_label() const {
+    std::string label;
+    for (const CellFilter& f : filters) {
+        label += (label.empty() ? "" : " + ") + f.plugin;
+        for (const auto& [k, v] : f.params) label += " " + k + "=" + v;
+    }
+    return label;
+}
+
+std::string Cell::entry_label() const { return filters.empty() ? base_entry_label() : base_entry_label() + " | " + filter_label(); }
 
 nlohmann::json timing_spec_json(const TimingSpec& t) { return {{"mode", t.mode}, {"speed", t.speed}, {"warmup_frames", t.warmup_frames}}; }
 
@@ -32,6 +43,12 @@ nlohmann::json cell_to_json(const Cell& c) {
     nlohmann::json j = cell_fields(c);
     // Absent when default: the ids of cells recorded before timing existed stay what they were.
     if (!c.timing.is_default()) j["timing"] = timing_spec_json(c.timing);
+    if (!c.filters.empty()) {
+        j["filters"] = nlohmann::json::array();
+        for (const CellFilter& f : c.filters)
+            j["filters"].push_back(
+                {{"plugin", f.plugin}, {"plugin_file", f.plugin_file}, {"plugin_hash", f.plugin_hash}, {"params", f.params}});
+    }
     return j;
 }
 
@@ -90,6 +107,10 @@ Cell cell_from_json(const nlohmann::json& j) {
     c.limits.memory_mb = j.at("limits").at("memory_mb");
     c.limits.threads = j.at("limits").at("threads");
     if (j.contains("timing")) c.timing = timing_spec_from_json(j.at("timing"));
+    if (j.contains("filters"))
+        for (const auto& f : j.at("filters"))
+            c.filters.push_back({f.at("plugin").get<std::string>(), f.at("plugin_file").get<std::string>(),
+                                 f.at("plugin_hash").get<std::string>(), f.at("params").get<ParamMap>()});
     return c;
 }
 

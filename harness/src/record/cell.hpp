@@ -11,6 +11,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace vobench {
 
@@ -40,6 +41,13 @@ struct TimingSpec {
 nlohmann::json timing_spec_json(const TimingSpec& t);
 TimingSpec timing_spec_from_json(const nlohmann::json& j);  // throws on a malformed one
 
+// One filter of a cell's chain (API 3 filter plugin), as recorded.
+struct CellFilter {
+    std::string plugin;  // the descriptor's name (plugin_file is what runs)
+    std::string plugin_file, plugin_hash;
+    ParamMap params;
+};
+
 struct Cell {
     std::string id;
     // What it runs on.
@@ -61,11 +69,18 @@ struct Cell {
     metrics::Protocol protocol;
     Limits limits;
     TimingSpec timing;  // in the record (and so in the id) only when not the default
+    // Perturbations between reader and plugin, in order; in the record (and the id) only when present.
+    std::vector<CellFilter> filters;
 
     // "redetect_below=100 lk_levels=3", or "defaults".
     std::string variant_label() const;
-    // One entry of a table: algorithm name plus its variant, when there is a sweep.
+    // One entry of a table: algorithm name plus its variant, when there is a sweep, plus the filters
+    // ("put_vo | depth_holes fraction=0.2") when there are any.
     std::string entry_label() const;
+    // The algorithm and its variant only.
+    std::string base_entry_label() const;
+    // "depth_holes fraction=0.2 radius=6 + color_noise sigma=4", or "" without filters.
+    std::string filter_label() const;
 };
 
 nlohmann::json cell_to_json(const Cell& cell);

@@ -4,6 +4,8 @@
 #include "util/escape.hpp"
 #include "util/files.hpp"
 
+#include <vobench/plugin.hpp>
+
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
@@ -13,10 +15,14 @@
 #include <unistd.h>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
+#include <set>
 #include <sstream>
 #include <thread>
+#include <tuple>
 
 extern char** environ;
 
@@ -102,6 +108,72 @@ void draw_all(std::vector<Figure>& figures, const fs::path& folder) {
             for (std::size_t i; (i = next++) < figures.size();) figures[i].drawn = run_gnuplot(folder, figures[i].stem);
         });
     for (std::thread& t : pool) t.join();
+}
+
+// Degradation curves (issue #20): for each filter parameter a sweep varies, a metric against the
+// parameter's value, one line per algorithm entry (with the rest of its filter chain) and sensor, mean ±
+// std over the cells of each point (repeats; one figure per sequence).
+void degradation_figures(const std::vector<RunGroup>& groups, const fs::path& folder, std::vector<Figure>& figures) {
+    // (filter, parameter, sequence) → (base entry, sensor) → value → the groups' successful runs' metrics
+    using Series = std::map<std::pair<std::string, std::string>, std::map<double, std::vector<const RunRecord*>>>;
+    std::map<std::tuple<std::string, std::string, std::string>, Series> curves;
+    std::map<std::pair<std::string, std::string>, std::set<std::string>> values_seen;
+    for (const RunGroup& g : groups)
+        for (const RunRecord* r : g.runs) {
+            if (!r->ok) continue;
+            for (std::size_t k = 0; k < r->cell.filters.size(); ++k)
+                for (const auto& [key, text] : r->cell.filters[k].params) {
+                    double x;
+                    if (!vobench::sdk::parse_double(text, x)) continue;
+                    const std::string& filter = r->cell.filters[k].plugin;
+                    values_seen[{filter, key}].insert(text);
+                    // One line per entry and the rest of its chain (this parameter left out).
+                    Cell rest = r->cell;
+                    rest.filters[k].params.erase(key);
+                    curves[{filter, key, g.row_label()}][{rest.entry_label(), g.sensor}][x].push_back(r);
+                }
+        }
+    for (const auto& [what, series] : curves) {
+        const auto& [filter, key, row] = what;
+        if (values_seen[{filter, key}].size() < 2) continue;  // not swept
+        Figure f{"degradation", fmt::format("Degradation with {} {} — {}", filter, key, row), file_stem({"degradation", filter, key, row}),
+                 false};
+        std::string data, ate_plot, rpe_plot;
+        int block = 0;
+        for (const auto& [line, points] : series) {
+            const std::string title = line.first + (line.second.empty() ? "" : " (" + sensor_title(line.second) + ")");
+            data += fmt::format("# {}\n# {} ate_rmse_mean ate_rmse_std rpe_trans_rmse_mean rpe_trans_rmse_std cells\n", clean_text(title),
+                                clean_text(key));
+            for (const auto& [x, runs] : points) {
+                std::vector<double> ate, rpe;
+                for (const RunRecord* r : runs) {
+                    if (auto it = r->metrics.find("ate.rmse"); it != r->metrics.end()) ate.push_back(it->second);
+                    if (auto it = r->metrics.find("rpe.trans.rmse"); it != r->metrics.end()) rpe.push_back(it->second);
+                }
+                const auto ms = [](const std::vector<double>& v) {
+                    if (v.empty()) return std::string("NaN NaN");
+                    double m = 0, q = 0;
+                    for (double e : v) m += e;
+                    m /= static_cast<double>(v.size());
+                    for (double e : v) q += (e - m) * (e - m);
+                    return fmt::format("{:.9g} {:.9g}", m, v.size() > 1 ? std::sqrt(q / static_cast<double>(v.size() - 1)) : 0.0);
+                };
+                data += fmt::format("{:.9g} {} {} {}\n", x, ms(ate), ms(rpe), runs.size());
+            }
+            data += "\n\n";
+            ate_plot += fmt::format("{}'{}.dat' index {} using 1:2:3 with yerrorlines lw 1.5 title {}", block ? ", " : "plot ", f.stem,
+                                    block, gnuplot_quoted(title));
+            rpe_plot += fmt::format("{}'{}.dat' index {} using 1:4:5 with yerrorlines lw 1.5 title {}", block ? ", " : "plot ", f.stem,
+                                    block, gnuplot_quoted(title));
+            ++block;
+        }
+        const std::string setup = fmt::format("set grid\nset key top left\nset datafile missing 'NaN'\nset xlabel {}\nset yrange [0:*]",
+                                              gnuplot_quoted(filter + " " + key));
+        const std::string plot =
+            fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
+                        gnuplot_quoted(f.title + " (mean ± std over cells)"), ate_plot, rpe_plot);
+        emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
+    }
 }
 
 }  // namespace
@@ -208,6 +280,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                         gnuplot_quoted(f.title), ate_plot, rpe_plot);
         emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
     }
+    degradation_figures(groups, folder, figures);
     draw_all(figures, folder);
     return figures;
 }

@@ -7,6 +7,7 @@
 
 #include <fnmatch.h>
 
+#include <map>
 #include <optional>
 
 namespace vobench {
@@ -54,6 +55,11 @@ std::string cell_id(const Cell& c) {
 }  // namespace
 
 std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& registry, const fs::path& out, bool render) {
+    std::map<fs::path, std::string> filter_hashes;  // each filter binary hashed once
+    const auto filter_hash = [&](const fs::path& file) {
+        auto it = filter_hashes.find(file);
+        return it != filter_hashes.end() ? it->second : filter_hashes[file] = file_hash(file);
+    };
     const fs::path memo = out / ".cache" / "checksums.json";
     // Each algorithm's binary, found and hashed once (not once per sequence).
     std::vector<std::pair<std::string, std::string>> binaries;  // (file, hash) per algorithm
@@ -79,36 +85,40 @@ std::vector<Cell> expand_cells(const SweepConfig& config, const PluginRegistry& 
             for (std::size_t ai = 0; ai < config.algorithms.size(); ++ai) {
                 const AlgorithmSpec& a = config.algorithms[ai];
                 const auto& [plugin_file, plugin_hash] = binaries[ai];
-                for (std::size_t vi = 0; vi < a.variants.size(); ++vi)
-                    for (std::size_t r = 0; r < config.seeds.size(); ++r) {
-                        const ParamMap& params = a.variants[vi];
-                        Cell c;
-                        c.dataset = d.name;
-                        c.sequence = s.name;
-                        c.sensor = s.sensor;
-                        c.reader = s.reader;
-                        c.path = fs::absolute(s.path).lexically_normal().string();
-                        c.reader_options = s.options;
-                        c.dataset_checksum = checksum;
-                        c.reader_hash = reader_hash;
-                        c.gt_accuracy = d.gt_accuracy;
-                        c.algorithm = a.name;
-                        c.plugin = a.plugin;
-                        c.plugin_file = plugin_file;
-                        c.plugin_hash = plugin_hash;
-                        c.load_error = a.load_error;
-                        if (c.load_error.empty() && vi < a.variant_errors.size()) c.load_error = a.variant_errors[vi];
-                        c.params = params;
-                        c.repeat = r;
-                        c.seed = config.seeds[r];
-                        c.max_frames = config.max_frames;
-                        c.frames_declared = declared;
-                        c.protocol = config.protocol;
-                        c.limits = config.limits;
-                        c.timing = config.timing;
-                        c.id = cell_id(c);
-                        cells.push_back(std::move(c));
-                    }
+                for (const auto& chain : config.filter_variants)
+                    for (std::size_t vi = 0; vi < a.variants.size(); ++vi)
+                        for (std::size_t r = 0; r < config.seeds.size(); ++r) {
+                            const ParamMap& params = a.variants[vi];
+                            Cell c;
+                            c.dataset = d.name;
+                            c.sequence = s.name;
+                            c.sensor = s.sensor;
+                            c.reader = s.reader;
+                            c.path = fs::absolute(s.path).lexically_normal().string();
+                            c.reader_options = s.options;
+                            c.dataset_checksum = checksum;
+                            c.reader_hash = reader_hash;
+                            c.gt_accuracy = d.gt_accuracy;
+                            c.algorithm = a.name;
+                            c.plugin = a.plugin;
+                            c.plugin_file = plugin_file;
+                            c.plugin_hash = plugin_hash;
+                            c.load_error = a.load_error;
+                            if (c.load_error.empty() && vi < a.variant_errors.size()) c.load_error = a.variant_errors[vi];
+                            c.params = params;
+                            c.repeat = r;
+                            c.seed = config.seeds[r];
+                            c.max_frames = config.max_frames;
+                            c.frames_declared = declared;
+                            c.protocol = config.protocol;
+                            c.limits = config.limits;
+                            c.timing = config.timing;
+                            for (const FilterChainItem& f : chain)
+                                c.filters.push_back(
+                                    {f.name, fs::absolute(f.file).lexically_normal().string(), filter_hash(f.file), f.params});
+                            c.id = cell_id(c);
+                            cells.push_back(std::move(c));
+                        }
             }
         }
     }

@@ -58,6 +58,7 @@ int exec_cell(const fs::path& work) {
     t.seed = cell.seed;
     t.max_frames = cell.max_frames;
     t.timing = cell.timing;
+    for (const CellFilter& f : cell.filters) t.filters.push_back({f.plugin_file.empty() ? f.plugin : f.plugin_file, f.params});
     t.evaluate = false;
     // One thread means one core: frames are decoded between process() calls (still outside the
     // timed window) instead of on a prefetch thread, so N cells on N cores do not compete.

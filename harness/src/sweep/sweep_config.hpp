@@ -64,6 +64,15 @@ struct AlgorithmSpec {
     std::string where;
 };
 
+// One filter of a config's `filters:` chain with one value per parameter (a list in the config is
+// swept: the variants are the cartesian product over every filter's lists).
+struct FilterChainItem {
+    std::string plugin;  // name or path, as the config gives it
+    std::string name;    // the descriptor's name
+    std::filesystem::path file;
+    ParamMap params;
+};
+
 struct SweepConfig {
     std::filesystem::path file;
     std::string name;
@@ -76,6 +85,8 @@ struct SweepConfig {
     std::string rank_by = "ate.rmse";
     Limits limits;
     TimingSpec timing;
+    // Each variant is one chain of filters applied to every cell (empty list: one variant, no filter).
+    std::vector<std::vector<FilterChainItem>> filter_variants{{}};
     std::string backend = "local";
     std::vector<Criterion> criteria;
     nlohmann::json source;  // the whole file as JSON, for the record
