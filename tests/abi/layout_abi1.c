@@ -135,11 +135,12 @@ PIN(vobench_odometry_api, destroy, 48);
 PIN(vobench_odometry_api, extra_params, 56); /* API 3 */
 
 /* API 3 */
-PIN_SIZE(vobench_filter_config, 32);
+PIN_SIZE(vobench_filter_config, 40);
 PIN(vobench_filter_config, struct_size, 0);
 PIN(vobench_filter_config, camera, 8);
 PIN(vobench_filter_config, params, 16);
 PIN(vobench_filter_config, seed, 24);
+PIN(vobench_filter_config, output_camera, 32);
 
 PIN_SIZE(vobench_filter_api, 48);
 PIN(vobench_filter_api, struct_size, 0);

@@ -294,6 +294,8 @@ public:
     // The perturbed frame (the filter's own, valid until the next apply() or destruction), or nullptr
     // to drop this frame (the plugin does not see it). Throw on error.
     virtual const vobench_frame* apply(const vobench_frame& frame) = 0;
+    // After start(): the camera of the frames apply() gives (default: the input camera unchanged).
+    virtual vobench_camera output_camera(const vobench_camera& input) const { return input; }
 
     const Host& host() const { return *host_; }
     void attach_host(const Host* host) { host_ = host; }
@@ -598,6 +600,11 @@ struct FilterBridge : BridgeBase<Impl, vobench_filter, VOBENCH_KIND_FILTER> {
             if (config == nullptr || config->camera == nullptr)
                 throw Error(VOBENCH_INVALID_ARGUMENT, "start() needs a configuration with a camera");
             s->impl->start(*config->camera, Params(Base::store().info.params, config->params), config->seed);
+            if (VOBENCH_HAS_FIELD(config, vobench_filter_config, output_camera) && config->output_camera != nullptr) {
+                const uint32_t size = config->output_camera->struct_size;
+                *config->output_camera = s->impl->output_camera(*config->camera);
+                config->output_camera->struct_size = size;
+            }
         });
     }
     static vobench_status apply(vobench_filter* h, const vobench_frame* in, const vobench_frame** out) noexcept {

@@ -352,6 +352,10 @@ typedef struct vobench_filter_config {
     const vobench_camera* camera; /* [host-owned], read during start() only: the frames' camera */
     const vobench_params* params; /* [host-owned], read during start() only */
     uint64_t seed;                /* for the perturbation's randomness: same seed, same frames */
+    /* [host-owned], writable during start() only; preset to *camera. A filter that changes the frames'
+     * geometry (resolution_scale) writes the camera of the frames it will give; the next filter and the
+     * odometry plugin get that camera. */
+    vobench_camera* output_camera;
 } vobench_filter_config;
 
 typedef struct vobench_filter_api {

@@ -223,19 +223,29 @@ FilterInstance::~FilterInstance() { api_->destroy(handle_); }
 
 void FilterInstance::start(const vobench_camera& camera, const ParamMap& params, uint64_t seed) {
     validate_params(plugin_->info(), params);
+    const vobench_camera input = camera;
     camera_ = camera;
     const ParamView view(params);
     vobench_filter_config config{};
     config.struct_size = sizeof(config);
-    config.camera = &camera_;
+    config.camera = &input;
     config.params = view.get();
     config.seed = seed;
+    config.output_camera = &camera_;  // preset to the input: a filter that keeps the geometry leaves it
     if (vobench_status s = api_->start(handle_, &config); s != VOBENCH_OK) {
         const char* message = api_->last_error(handle_);
         throw PluginCallError(
             "filter '" + plugin_->name() + "': start failed (" + status_name(s) + "): " + (message && *message ? message : "no message"),
             s);
     }
+    camera_.struct_size = sizeof(camera_);
+    const vobench_camera& c = camera_;
+    if (c.width <= 0 || c.height <= 0 || c.width > 16384 || c.height > 16384 || !(std::isfinite(c.fx) && c.fx > 0) ||
+        !(std::isfinite(c.fy) && c.fy != 0) || !std::isfinite(c.cx) || !std::isfinite(c.cy) || c.distortion_count < 0 ||
+        c.distortion_count > 8)
+        throw PluginCallError("filter '" + plugin_->name() + "': start() wrote an unusable output camera (" + std::to_string(c.width) +
+                                  "x" + std::to_string(c.height) + ", fx " + std::to_string(c.fx) + ")",
+                              VOBENCH_ERROR);
 }
 
 const vobench_frame* FilterInstance::apply(const vobench_frame& in) {

@@ -124,6 +124,8 @@ public:
     // drops it. Throws PluginCallError when the filter fails or gives a frame that is not `in`'s
     // (another index, a size or format that does not match the camera, a stamp that is not finite).
     const vobench_frame* apply(const vobench_frame& in);
+    // The camera of the frames apply() gives (the filter may change the geometry), after start().
+    const vobench_camera& output_camera() const { return camera_; }
     const PluginLibrary& plugin() const { return *plugin_; }
 
 private:

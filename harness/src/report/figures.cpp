@@ -118,24 +118,39 @@ void degradation_figures(const std::vector<RunGroup>& groups, const fs::path& fo
     using Series = std::map<std::pair<std::string, std::string>, std::map<double, std::vector<const RunRecord*>>>;
     std::map<std::tuple<std::string, std::string, std::string>, Series> curves;
     std::map<std::pair<std::string, std::string>, std::set<std::string>> values_seen;
+    const auto numeric = [](const std::string& text) {
+        double x;
+        return vobench::sdk::parse_double(text, x);
+    };
+    for (const RunGroup& g : groups)
+        for (const RunRecord* r : g.runs)
+            if (r->ok)
+                for (const CellFilter& f : r->cell.filters)
+                    for (const auto& [key, text] : f.params)
+                        if (numeric(text)) values_seen[{f.plugin, key}].insert(text);
+    const auto varies = [&](const std::string& filter, const std::string& key) {
+        const auto it = values_seen.find({filter, key});
+        return it != values_seen.end() && it->second.size() >= 2;
+    };
     for (const RunGroup& g : groups)
         for (const RunRecord* r : g.runs) {
             if (!r->ok) continue;
             for (std::size_t k = 0; k < r->cell.filters.size(); ++k)
                 for (const auto& [key, text] : r->cell.filters[k].params) {
                     double x;
-                    if (!vobench::sdk::parse_double(text, x)) continue;
-                    const std::string& filter = r->cell.filters[k].plugin;
-                    values_seen[{filter, key}].insert(text);
-                    // One line per entry and the rest of its chain (this parameter left out).
-                    Cell rest = r->cell;
-                    rest.filters[k].params.erase(key);
-                    curves[{filter, key, g.row_label()}][{rest.entry_label(), g.sensor}][x].push_back(r);
+                    if (!vobench::sdk::parse_double(text, x) || !varies(r->cell.filters[k].plugin, key)) continue;
+                    // One line per entry and the rest of its chain: this parameter and the ones no cell
+                    // varies left out of the label.
+                    std::string line = r->cell.base_entry_label();
+                    for (std::size_t j = 0; j < r->cell.filters.size(); ++j)
+                        for (const auto& [other, v] : r->cell.filters[j].params)
+                            if ((j != k || other != key) && varies(r->cell.filters[j].plugin, other))
+                                line += " " + r->cell.filters[j].plugin + " " + other + "=" + v;
+                    curves[{r->cell.filters[k].plugin, key, g.row_label()}][{line, g.sensor}][x].push_back(r);
                 }
         }
     for (const auto& [what, series] : curves) {
         const auto& [filter, key, row] = what;
-        if (values_seen[{filter, key}].size() < 2) continue;  // not swept
         Figure f{"degradation", fmt::format("Degradation with {} {} — {}", filter, key, row), file_stem({"degradation", filter, key, row}),
                  false};
         std::string data, ate_plot, rpe_plot;
@@ -167,12 +182,14 @@ void degradation_figures(const std::vector<RunGroup>& groups, const fs::path& fo
                                     block, gnuplot_quoted(title));
             ++block;
         }
-        const std::string setup = fmt::format("set grid\nset key top left\nset datafile missing 'NaN'\nset xlabel {}\nset yrange [0:*]",
-                                              gnuplot_quoted(filter + " " + key));
+        const std::string setup = fmt::format(
+            "set grid\nset key outside bottom center horizontal maxrows 4 font ',8'\nset datafile missing 'NaN'\nset xlabel {}\n"
+            "set yrange [0:*]\nset offsets graph 0.02, graph 0.02, 0, 0",
+            gnuplot_quoted(filter + " " + key));
         const std::string plot =
             fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
                         gnuplot_quoted(f.title + " (mean ± std over cells)"), ate_plot, rpe_plot);
-        emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
+        emit(figures, folder, f, data, script(f.stem, setup, plot, 1100, 560));
     }
 }
 

@@ -86,12 +86,14 @@ TrackResult run_track(const TrackOptions& options, const PluginRegistry& registr
     dataset.open(options.path, options.dataset_options);
     const vobench_sequence_info& info = dataset.info();
     std::vector<std::unique_ptr<FilterInstance>> filters;
+    vobench_camera camera = *info.camera;  // each filter may change the geometry for those after it
     for (std::size_t k = 0; k < options.filters.size(); ++k) {
         filters.push_back(std::make_unique<FilterInstance>(registry.load(options.filters[k].plugin, VOBENCH_KIND_FILTER)));
-        filters.back()->start(*info.camera, options.filters[k].params, options.seed + 1000003 * (k + 1));
+        filters.back()->start(camera, options.filters[k].params, options.seed + 1000003 * (k + 1));
+        camera = filters.back()->output_camera();
     }
     OdometryInstance odometry(registry.load(options.algorithm, VOBENCH_KIND_ODOMETRY));
-    odometry.start(*info.camera, options.params, options.seed);
+    odometry.start(camera, options.params, options.seed);
 
     TrackResult result;
     result.sequence = info.name ? info.name : "";
