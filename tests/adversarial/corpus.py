@@ -666,16 +666,7 @@ def python_faults(args, w):
           r1.returncode == 0 and "sweep finished" in r1.stderr, f"exit {r1.returncode}: {r1.stderr[-3000:]}")
     expected = {n: v[1] for n, v in PY_FAULTS.items()}
     expected.update({n: v[1] for n, v in PY_MODULE_FAULTS.items()})
-    found = runs_by_algorithm(os.path.join(w, "py_faults"))
-    for key, pattern in expected.items():
-        r = next((v for k, v in found.items() if k[1] == key), None)
-        if r is None:
-            check(f"python: {key}", False, "no row")
-        elif pattern == "ok":
-            check(f"python: {key} is a healthy row", r["status"] == "ok", r["reason"])
-        else:
-            ok = r["status"] == "failed" and re.search(pattern, r["reason"], re.S) is not None and r["metrics"] == {}
-            check(f"python: {key} -> failed row '{r['reason'][-110:]}'", ok, f"status {r['status']}, reason {r['reason']!r}, wanted /{pattern}/")
+    expect_rows("python", os.path.join(w, "py_faults"), expected)
     same_healthy("python", os.path.join(w, "py_faults"), os.path.join(w, "py_clean"))
     check("python: no process of any cell outlives it", not cell_processes(), f"left: {cell_processes()}")
 
