@@ -68,7 +68,7 @@ void add_plugins_commands(CLI::App& app, int& exit_code) {
             std::cout << json_text(j) << std::endl;
         } else {
             for (const auto& p : scan.plugins)
-                std::cout << fmt::format("{:<9} {:<16} {:<8} {}\n", kind_name(p.kind), p.name, clean_text(p.version),
+                std::cout << fmt::format("{:<9} {:<18} {:<8} {}\n", kind_name(p.kind), p.name, clean_text(p.version),
                                          clean_text(p.description));
             if (scan.plugins.empty()) std::cout << "no plugins found (set VOBENCH_PLUGIN_PATH)\n";
         }

@@ -11,6 +11,7 @@
 #include "metrics/evaluation.hpp"
 #include "record/cell.hpp"
 #include "record/criterion.hpp"
+#include "sweep/filter_config.hpp"
 #include "sweep/yaml_reader.hpp"
 
 #include <nlohmann/json.hpp>
@@ -62,15 +63,6 @@ struct AlgorithmSpec {
     // takes for those values (an import error, a crash); "" where it could. Those cells fail.
     std::vector<std::string> variant_errors;
     std::string where;
-};
-
-// One filter of a config's `filters:` chain with one value per parameter (a list in the config is
-// swept: the variants are the cartesian product over every filter's lists).
-struct FilterChainItem {
-    std::string plugin;  // name or path, as the config gives it
-    std::string name;    // the descriptor's name
-    std::filesystem::path file;
-    ParamMap params;
 };
 
 struct SweepConfig {
