@@ -82,3 +82,39 @@ TEST_CASE("a missing or empty stream has no frames and no error", "[record][fram
     CHECK(decode_frames("/nonexistent/frames.jsonl").frames.empty());
     CHECK(decode_frames(stream_file("")).error.empty());
 }
+
+TEST_CASE("dropped frames (real time, filters) come back as dropped, without a pose; a forged one ends the stream", "[record][frames]") {
+    FrameRecord kept, dropped;
+    kept.index = 0;
+    kept.stamp = 1.0;
+    kept.process_ns = 5000;
+    kept.cpu_ns = 4000;
+    dropped.index = 1;
+    dropped.stamp = 1.033;
+    dropped.read_ns = 7;
+    dropped.dropped = true;
+    metrics::StampedPose p;
+    p.t = 1.0;
+    const std::string text = encode_frame(kept, p) + encode_frame(dropped, p) +
+                             encode_frame(
+                                 [&] {
+                                     FrameRecord f = kept;
+                                     f.index = 2;
+                                     f.stamp = 1.066;
+                                     return f;
+                                 }(),
+                                 p);
+    const FrameStream s = decode_frames(stream_file(text));
+    REQUIRE(s.error.empty());
+    REQUIRE(s.frames.size() == 3);
+    CHECK(s.dropped_frames == 1);
+    CHECK(s.poses.size() == 2);  // one per frame the plugin saw
+    CHECK(s.frames[1].dropped);
+    CHECK(s.frames[1].read_ns == 7);
+    CHECK(s.frames[0].cpu_ns == 4000);
+    // A dropped line with a pose or anything else added is not one the harness writes.
+    const FrameStream forged =
+        decode_frames(stream_file(encode_frame(kept, p) + "{\"i\":1,\"t\":1.0,\"r\":0,\"d\":1,\"p\":[0,0,0,0,0,0,1]}\n"));
+    CHECK(forged.frames.size() == 1);
+    CHECK(forged.error == "frames.jsonl line 2: a malformed dropped frame");
+}
