@@ -178,11 +178,20 @@ READER_FAULTS = {
 }
 
 
-def plugin_faults(args, w):
-    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
+def corpus_plugin(args, kind, fault):
+    return os.path.join(args.plugins, f"corpus_{kind}_{fault}.so")
+
+
+def corpus_reader(args, w):
+    """The healthy corpus reader's dataset entry (its sequence is made in memory; the folder only names it)."""
     seq = os.path.join(w, "empty_sequence")
     os.makedirs(seq, exist_ok=True)
-    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    return {"name": "corpus", "reader": corpus_plugin(args, "reader", "healthy"), "path": seq}
+
+
+def plugin_faults(args, w):
+    p = lambda kind, f: corpus_plugin(args, kind, f)
+    reader = corpus_reader(args, w)
     healthy = [{"name": "healthy", "plugin": p("vo", "healthy")}, {"name": "constant_pose", "plugin": args.constant_pose}]
     clean = config(os.path.join(w, "vo_clean.yaml"), "vo clean", os.path.join(w, "vo_clean"), [reader], healthy)
     faulty = config(os.path.join(w, "vo_faults.yaml"), "vo faults", os.path.join(w, "vo_faults"), [reader],
@@ -435,6 +444,16 @@ def results_faults(args, w):
     r = report(d)
     check("results: a trajectory shorter than its record is caught (exit 2)", r.returncode == 2 and "poses, run.json says" in r.stdout, r.stdout[-600:])
 
+    # Real-time records: a forged dropped_frames count cannot hide missing poses, nor exceed the frames.
+    for name, dropped, want in (("dropped_hides_poses", 5, "poses, run.json says"), ("dropped_too_many", 10**6, "more frames were dropped")):
+        d = fresh(name)
+        j = load_json(run_json(d, ids[0]))
+        j["dropped_frames"] = dropped
+        write(run_json(d, ids[0]), json.dumps(j))
+        r = report(d)
+        check(f"results: run.json with dropped_frames = {dropped} and every pose is caught (exit 2)", r.returncode == 2 and want in r.stdout,
+              r.stdout[-600:])
+
     d = fresh("missing_cell")
     shutil.rmtree(os.path.join(d, "runs", ids[0]))
     r = report(d)
@@ -562,17 +581,14 @@ FILTER_FAULTS = {
     "crash": r"killed by signal 11 \(SIGSEGV\) at frame 3",
     "error_status": r"filter 'corpus_filter': apply failed at frame 3 \(error\): deliberately fails at frame 3",
     "nan_stamp": r"filter 'corpus_filter' gave a stamp that is not finite at frame 3",
-    "drop_all": r"the run could not be evaluated|fewer than",
+    "drop_all": "27 dropped",  # not a failure: checked by count below
 }
 
 
 def filter_faults(args, w):
-    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
-    seq = os.path.join(w, "empty_sequence")
-    os.makedirs(seq, exist_ok=True)
-    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    p = lambda kind, f: corpus_plugin(args, kind, f)
+    reader = corpus_reader(args, w)
     algos = [{"name": "constant_pose", "plugin": args.constant_pose}]
-    found = {}
     for fault, pattern in FILTER_FAULTS.items():
         out = os.path.join(w, f"filter_{fault}")
         cfg = config(os.path.join(w, f"filter_{fault}.yaml"), f"filter {fault}", out, [reader], algos,
@@ -643,9 +659,7 @@ def python_faults(args, w):
     if not args.python:
         print("skip  python: no --python bridge given (built without pybind11?)")
         return
-    p = lambda kind, f: os.path.join(args.plugins, f"corpus_{kind}_{f}.so")
-    seq = os.path.join(w, "empty_sequence")
-    os.makedirs(seq, exist_ok=True)
+    seq = corpus_reader(args, w)["path"]
     mods = os.path.join(w, "py")
     for name, (body, _) in PY_FAULTS.items():
         write(os.path.join(mods, name + ".py"),
@@ -653,7 +667,7 @@ def python_faults(args, w):
                         f"    def process(self, frame):\n        {body}\n")
     for name, (text, _) in PY_MODULE_FAULTS.items():
         write(os.path.join(mods, name + ".py"), text)
-    reader = {"name": "corpus", "reader": p("reader", "healthy"), "path": seq}
+    reader = corpus_reader(args, w)
     algo = lambda n: {"name": n, "plugin": args.python, "params": {"module": os.path.join(mods, n + ".py")}}
     healthy = [algo("py_healthy"), {"name": "constant_pose", "plugin": args.constant_pose}]
     clean = config(os.path.join(w, "py_clean.yaml"), "py clean", os.path.join(w, "py_clean"), [reader], healthy)

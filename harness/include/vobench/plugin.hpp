@@ -241,7 +241,17 @@ private:
 
 // ----- the classes plugin authors derive from ----------------------------------------------------
 
-class Odometry {
+// The host services of an instance, for every kind: set by the SDK before the first call.
+class WithHost {
+public:
+    const Host& host() const { return *host_; }
+    void attach_host(const Host* host) { host_ = host; }
+
+private:
+    const Host* host_ = nullptr;
+};
+
+class Odometry : public WithHost {
 public:
     virtual ~Odometry() = default;
     // Called once before the first frame. `camera` is the colour camera of the frames to come.
@@ -256,15 +266,9 @@ public:
         (void)given;
         return {};
     }
-
-    const Host& host() const { return *host_; }
-    void attach_host(const Host* host) { host_ = host; }
-
-private:
-    const Host* host_ = nullptr;
 };
 
-class Dataset {
+class Dataset : public WithHost {
 public:
     virtual ~Dataset() = default;
     virtual void open(const std::string& path, const Params& options) = 0;
@@ -277,16 +281,10 @@ public:
         (void)given;
         return {};
     }
-
-    const Host& host() const { return *host_; }
-    void attach_host(const Host* host) { host_ = host; }
-
-private:
-    const Host* host_ = nullptr;
 };
 
 // A filter (API 3): perturbs each frame between the reader and the odometry plugin.
-class Filter {
+class Filter : public WithHost {
 public:
     virtual ~Filter() = default;
     // Called once before the first frame; `camera` is the frames' camera.
@@ -296,12 +294,6 @@ public:
     virtual const vobench_frame* apply(const vobench_frame& frame) = 0;
     // After start(): the camera of the frames apply() gives (default: the input camera unchanged).
     virtual vobench_camera output_camera(const vobench_camera& input) const { return input; }
-
-    const Host& host() const { return *host_; }
-    void attach_host(const Host* host) { host_ = host; }
-
-private:
-    const Host* host_ = nullptr;
 };
 
 // A frame a filter owns: a deep copy of one it was given (rows packed), whose pixels it may change.

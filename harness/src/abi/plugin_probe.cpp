@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <map>
 #include <mutex>
+#include <optional>
 
 namespace vobench {
 namespace fs = std::filesystem;
@@ -32,6 +33,66 @@ PluginInfo from_answer(const nlohmann::json& answer, const fs::path& file) {
     PluginInfo info = plugin_info_from_json(answer.at("info"));
     info.path = file;  // the same binary may sit at several paths
     return info;
+}
+
+int probe_timeout(int timeout_s) {
+    if (const char* env = std::getenv("VOBENCH_PROBE_TIMEOUT"); env && std::atoi(env) > 0) return std::atoi(env);
+    return timeout_s;
+}
+
+// The memo key of a probe: the library's content, and what else the answer depends on.
+std::string probe_key(const fs::path& file, const std::string& also) {
+    Hasher h;
+    try {
+        hash_file(h, file);
+    } catch (const std::exception&) {
+        throw PluginLoadError(file.string() + ": cannot be read");
+    }
+    h.add(also);
+    return h.hex();
+}
+
+std::optional<nlohmann::json> remembered(const std::string& key) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (auto it = g_memory.find(key); it != g_memory.end()) return it->second;
+    return std::nullopt;
+}
+
+void remember(const std::string& key, const nlohmann::json& answer) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    g_memory[key] = answer;
+}
+
+// {"refused": "…"} or {"info": <a PluginInfo>}: what a probe child writes when it runs to its end.
+bool well_formed(const nlohmann::json& a) {
+    if (!a.is_object()) return false;
+    if (a.contains("refused")) return a["refused"].is_string();
+    try {
+        plugin_info_from_json(a.at("info"));
+        return true;
+    } catch (const std::exception&) {
+        return false;
+    }
+}
+
+// Runs `vobench plugin-probe FILE OUT <extra>` contained, under the timeout; the answer it wrote, or
+// null when it wrote none that is well-formed.
+nlohmann::json ask_probe_child(const fs::path& file, const std::string& key, const std::vector<std::string>& extra, int timeout_s,
+                               ChildResult& child) {
+    const fs::path out = fs::temp_directory_path() / ("vobench-probe-" + std::to_string(::getpid()) + "-" + key + "-" +
+                                                      std::to_string(std::hash<std::string>{}(file.string())) + ".json");
+    std::error_code ec;
+    fs::remove(out, ec);
+    std::vector<std::string> args = {"plugin-probe", fs::absolute(file).string(), out.string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    ChildLimits limits;
+    limits.timeout_s = timeout_s;
+    limits.contain = true;
+    limits.memory_mb = 4096;
+    child = run_self_limited(args, limits);
+    nlohmann::json answer = read_json_or_null(out, 1 << 22);
+    fs::remove(out, ec);
+    return child.exited && child.exit_code == 0 && well_formed(answer) ? answer : nlohmann::json(nullptr);
 }
 
 std::string params_text(const ParamMap& params) {
@@ -74,45 +135,18 @@ int probe_plugin_main(const fs::path& file, const fs::path& out, const ParamMap&
 }
 
 PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
-    if (const char* env = std::getenv("VOBENCH_PROBE_TIMEOUT"); env && std::atoi(env) > 0) timeout_s = std::atoi(env);
+    timeout_s = probe_timeout(timeout_s);
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) throw PluginLoadError(file.string() + ": no such file");
-    Hasher h;
-    try {
-        hash_file(h, file);
-    } catch (const std::exception& e) {
-        throw PluginLoadError(file.string() + ": cannot be read");
-    }
-    h.add("abi " + std::to_string(VOBENCH_ABI_VERSION) + " api " + std::to_string(VOBENCH_API_VERSION) + " probe 1");
-    const std::string key = h.hex();
-    {
-        std::lock_guard<std::mutex> lock(g_mutex);
-        if (auto it = g_memory.find(key); it != g_memory.end()) return from_answer(it->second, file);
-    }
+    const std::string key =
+        probe_key(file, "abi " + std::to_string(VOBENCH_ABI_VERSION) + " api " + std::to_string(VOBENCH_API_VERSION) + " probe 1");
+    if (const auto known = remembered(key)) return from_answer(*known, file);
     const fs::path folder = cache_folder();
     nlohmann::json answer = folder.empty() ? nlohmann::json(nullptr) : read_json_or_null(folder / (key + ".json"), 1 << 20);
-    const auto well_formed = [](const nlohmann::json& a) {
-        if (!a.is_object()) return false;
-        if (a.contains("refused")) return a["refused"].is_string();
-        try {
-            plugin_info_from_json(a.at("info"));
-            return true;
-        } catch (const std::exception&) {
-            return false;
-        }
-    };
     if (!well_formed(answer)) {
-        const fs::path out = fs::temp_directory_path() / ("vobench-probe-" + std::to_string(::getpid()) + "-" + key + "-" +
-                                                          std::to_string(std::hash<std::string>{}(file.string())) + ".json");
-        fs::remove(out, ec);
-        ChildLimits limits;
-        limits.timeout_s = timeout_s;
-        limits.contain = true;
-        limits.memory_mb = 4096;
-        const ChildResult child = run_self_limited({"plugin-probe", fs::absolute(file).string(), out.string()}, limits);
-        answer = read_json_or_null(out, 1 << 20);
-        fs::remove(out, ec);
-        if (!(child.exited && child.exit_code == 0) || !well_formed(answer)) {
+        ChildResult child;
+        answer = ask_probe_child(file, key, {}, timeout_s, child);
+        if (answer.is_null()) {
             // A crash or hang while loading is a property of the binary too: cached like a refusal.
             answer = {{"refused", "loading it " + (child.timed_out ? "did not finish within " + std::to_string(timeout_s) + " s (killed)"
                                                                    : "in a child process ended it: " + child.describe())}};
@@ -126,64 +160,35 @@ PluginInfo probe_plugin(const fs::path& file, int timeout_s) {
             }
         }
     }
-    {
-        std::lock_guard<std::mutex> lock(g_mutex);
-        g_memory[key] = answer;
-    }
+    remember(key, answer);
     return from_answer(answer, file);
 }
 
 PluginInfo probe_extra_params(const PluginInfo& info, const ParamMap& given, int timeout_s) {
     if (!info.has_extra_params) return info;
-    if (const char* env = std::getenv("VOBENCH_PROBE_TIMEOUT"); env && std::atoi(env) > 0) timeout_s = std::atoi(env);
+    timeout_s = probe_timeout(timeout_s);
     const ParamMap table = table_params(info, given);
     try {
         validate_params(info, table);
     } catch (const std::invalid_argument& e) {
         throw PluginLoadError(e.what());
     }
-    Hasher h;
-    try {
-        hash_file(h, info.path);
-    } catch (const std::exception&) {
-        throw PluginLoadError(info.path.string() + ": cannot be read");
-    }
-    h.add("extra params of " + fs::absolute(info.path).string());
-    for (const auto& [k, v] : table) h.add(k + "=" + v + ";");
-    const std::string key = h.hex();
-    {
-        std::lock_guard<std::mutex> lock(g_mutex);
-        if (auto it = g_memory.find(key); it != g_memory.end()) return from_answer(it->second, info.path);
-    }
-    const fs::path out = fs::temp_directory_path() / ("vobench-probe-" + std::to_string(::getpid()) + "-" + key + ".json");
-    std::error_code ec;
-    fs::remove(out, ec);
-    std::vector<std::string> args = {"plugin-probe", fs::absolute(info.path).string(), out.string(), "--extend"};
+    std::string also = "extra params of " + fs::absolute(info.path).string();
+    std::vector<std::string> extra = {"--extend"};
     for (const auto& [k, v] : table) {
-        args.push_back("--param");
-        args.push_back(k + "=" + v);
+        also += k + "=" + v + ";";
+        extra.push_back("--param");
+        extra.push_back(k + "=" + v);
     }
-    ChildLimits limits;
-    limits.timeout_s = timeout_s;
-    limits.contain = true;
-    limits.memory_mb = 4096;
-    const ChildResult child = run_self_limited(args, limits);
-    nlohmann::json answer = read_json_or_null(out, 1 << 22);
-    fs::remove(out, ec);
-    bool well_formed = false;
-    if (answer.is_object() && answer.contains("refused") && answer["refused"].is_string()) well_formed = true;
-    if (answer.is_object() && answer.contains("info")) try {
-            plugin_info_from_json(answer.at("info"));
-            well_formed = true;
-        } catch (const std::exception&) {}
-    if (!(child.exited && child.exit_code == 0) || !well_formed)
+    const std::string key = probe_key(info.path, also);
+    if (const auto known = remembered(key)) return from_answer(*known, info.path);
+    ChildResult child;
+    nlohmann::json answer = ask_probe_child(info.path, key, extra, timeout_s, child);
+    if (answer.is_null())
         answer = {{"refused", "asking it for the parameters of " + (table.empty() ? std::string("its defaults") : params_text(table)) +
                                   (child.timed_out ? " did not finish within " + std::to_string(timeout_s) + " s (killed)"
                                                    : " in a child process ended it: " + child.describe())}};
-    {
-        std::lock_guard<std::mutex> lock(g_mutex);
-        g_memory[key] = answer;
-    }
+    remember(key, answer);
     return from_answer(answer, info.path);
 }
 
