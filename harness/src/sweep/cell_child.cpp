@@ -42,6 +42,12 @@ int exec_cell(const fs::path& work) {
     // Before any thread exists (OpenCV's and TBB's pools, the frame reader), so all inherit it.
     const int pinned = pin_to_cell_cpu();
     cv::setNumThreads(cell.limits.threads);
+    // OpenMP (Open3D's, and any plugin's) reads its thread count when libgomp is first loaded — with
+    // the plugin, after this — so the limit reaches it through the environment. Without it OpenMP
+    // starts one thread per core, spinning while idle, in a cell that was given one.
+    const std::string omp_threads = std::to_string(cell.limits.threads);
+    ::setenv("OMP_NUM_THREADS", omp_threads.c_str(), 1);
+    ::setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
     tbb::global_control threads(tbb::global_control::max_allowed_parallelism, static_cast<std::size_t>(cell.limits.threads));
 
     std::FILE* stream = std::fopen((work / "frames.jsonl").c_str(), "we");
