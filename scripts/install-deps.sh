@@ -16,6 +16,7 @@ packages=(
   clang libclang-rt-14-dev              # libFuzzer targets of the text parsers (found when configuring)
   gnuplot-nox                           # the report's figures
   pybind11-dev python3-dev python3-numpy  # the Python bridge plugins (python, python_dataset)
+  libopen3d-dev                         # the open3d_rgbd plugin (Open3D's RGB-D odometry)
 )
 if [ "${1:-}" = "--test" ]; then
   packages+=(

@@ -178,6 +178,24 @@ READER_FAULTS = {
 }
 
 
+def open3d_params(args, w):
+    """open3d_rgbd's one free-text parameter (iterations per pyramid level): a value it cannot use is a
+    failed row naming the parameter, beside a healthy one."""
+    if not args.open3d:
+        print("skip  open3d: no --open3d plugin given (built without libopen3d-dev?)")
+        return
+    values = {"healthy": ("3,2", "ok"), "not_a_number": ("20,x,5", r"iterations: '20,x,5' is not a comma-separated list"),
+              "zero": ("0", r"iterations: '0' is not"), "empty_item": ("5,,5", r"iterations: '5,,5' is not"),
+              "nine_levels": ("1,1,1,1,1,1,1,1,1", r"at most 8 pyramid levels"), "huge": ("99999999999999999999", r"is not")}
+    algos = [{"name": k, "plugin": args.open3d, "params": {"iterations": v}} for k, (v, _) in values.items()]
+    out = os.path.join(w, "open3d")
+    cfg = config(os.path.join(w, "open3d.yaml"), "open3d params", out, [corpus_reader(args, w)], algos, extra="frames: 8\n")
+    r, seconds = sweep(args, cfg)
+    check(f"open3d: the sweep with {len(values) - 1} unusable iterations values finishes (exit 0, {seconds:.1f} s)", r.returncode == 0,
+          r.stderr[-1000:])
+    expect_rows("open3d", out, {k: p for k, (_, p) in values.items()})
+
+
 def corpus_plugin(args, kind, fault):
     return os.path.join(args.plugins, f"corpus_{kind}_{fault}.so")
 
@@ -732,6 +750,7 @@ def main():
     ap.add_argument("--python", default="", help="the python bridge plugin (vobench_python.so)")
     ap.add_argument("--python-dataset", default="", help="the python_dataset bridge plugin")
     ap.add_argument("--examples", default="", help="plugins/odometry/python_examples")
+    ap.add_argument("--open3d", default="", help="the open3d_rgbd plugin (vobench_open3d_rgbd.so)")
     args = ap.parse_args()
     shutil.rmtree(args.work, ignore_errors=True)
     os.makedirs(args.work)
@@ -740,8 +759,8 @@ def main():
     os.environ["VOBENCH_PROBE_CACHE"] = os.path.join(args.work, "probe-cache")
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
-    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, lock_and_cli,
-                    schemas):
+    for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, open3d_params,
+                    lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)
