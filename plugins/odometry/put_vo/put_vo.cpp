@@ -37,7 +37,10 @@ public:
                 "PUT RGB-D VO (Kraft et al. 2016): grid ORB + DBSCAN, pyramidal LK over key frames, 3-point RANSAC + Umeyama.",
                 "MIT",
                 "https://doi.org/10.1007/s00138-016-0802-6",
-                {{"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
+                {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper",
+                  "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold and depth_weighting off, "
+                  "whatever they are set to)"},
+                 {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
                  {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
                  {"fast_threshold", VOBENCH_PARAM_INT, "20", 1, 200, "", "initial FAST threshold of every cell"},
@@ -99,6 +102,11 @@ public:
         max_translation_ = p.get_double("max_translation");
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
+        if (p.get_string("profile") == "paper") {
+            flow_prior_ = false;
+            lk_fb_threshold_ = 0;
+            ransac_.depth_weighted_refinement = false;
+        }
         rng_.seed(seed);
         reset();
     }
