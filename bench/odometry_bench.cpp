@@ -10,6 +10,7 @@
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 #include <filesystem>
 #include <map>
@@ -107,6 +108,13 @@ void run_synth(benchmark::State& state, const std::string& sensor) {
     fs::remove_all(dir);
 }
 
+// "rgb_00007.png": the putk2 layout's file names.
+std::string fmt_index(const std::string& prefix, int k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%s%05d.png", prefix.c_str(), k);
+    return name;
+}
+
 // A reader alone: frames/s of open-once, read every frame (decode, rescale or register), 10 frames.
 void run_reader(benchmark::State& state, const std::string& reader, const std::string& sensor, const std::string& layout) {
     const fs::path dir = synthetic("reader-" + sensor + "-" + layout, sensor, layout, 10);
@@ -114,6 +122,27 @@ void run_reader(benchmark::State& state, const std::string& reader, const std::s
     d.open(dir.string(), {});
     uint64_t i = 0;
     for (auto _ : state) benchmark::DoNotOptimize(d.read(i++ % d.info().frame_count).depth->data);
+    state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// The reference for the Kinect v2 frame path (issue #19): only decoding the same PNGs with OpenCV
+// (colour 1920×1080 BGR, depth 512×424 16-bit), one after the other, nothing registered. The putk2
+// reader's delivery (run_reader putk2/kinect2) is measured against this, in the same run.
+void run_decode_only(benchmark::State& state, const std::string& sensor, const std::string& layout) {
+    const fs::path dir = synthetic("reader-" + sensor + "-" + layout, sensor, layout, 10);
+    std::vector<std::pair<fs::path, fs::path>> files;
+    for (int k = 0; fs::exists(dir / fmt_index("rgb_", k)); ++k)
+        files.emplace_back(dir / fmt_index("rgb_", k), dir / fmt_index("depth_", k));
+    if (files.empty()) {
+        state.SkipWithError("no rgb_00000.png in the rendered folder");
+        return;
+    }
+    std::size_t i = 0;
+    for (auto _ : state) {
+        const auto& [color, depth] = files[i++ % files.size()];
+        benchmark::DoNotOptimize(cv::imread(color.string(), cv::IMREAD_COLOR).data);
+        benchmark::DoNotOptimize(cv::imread(depth.string(), cv::IMREAD_UNCHANGED).data);
+    }
     state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
@@ -137,6 +166,9 @@ BENCHMARK_CAPTURE(run_reader, tum / kinect1_640x480, "tum", "kinect1", "tum")->U
 BENCHMARK_CAPTURE(run_reader, tum / kinect2_1920x1080, "tum", "kinect2", "tum")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_reader, putk2 / kinect1_640x480, "putk2", "kinect1", "putk2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_reader, putk2 / kinect2_1920x1080_registered, "putk2", "kinect2", "putk2")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_only, opencv_imread / kinect2_1920x1080_and_512x424, "kinect2", "putk2")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
