@@ -53,7 +53,8 @@ public:
     }
 
     void start(const vobench_camera& camera, const vobench::sdk::Params& p, uint64_t) override {
-        o3d::utility::SetVerbosityLevel(o3d::utility::VerbosityLevel::Error);  // Open3D would print per-frame warnings
+        // Open3D would print per-frame warnings; its verbosity is process-wide, and the cell process is this plugin's.
+        o3d::utility::SetVerbosityLevel(o3d::utility::VerbosityLevel::Error);
         intrinsic_ = o3d::camera::PinholeCameraIntrinsic(camera.width, camera.height, camera.fx, camera.fy, camera.cx, camera.cy);
         option_ = o3d::pipelines::odometry::OdometryOption(parse_iterations(p.get_string("iterations")), p.get_double("max_depth_diff"),
                                                            p.get_double("min_depth"), p.get_double("max_depth"));
@@ -66,7 +67,6 @@ public:
     }
 
     void reset() override {
-        have_previous_ = false;
         previous_.reset();
         world_from_current_ = Eigen::Isometry3d::Identity();
         last_motion_ = Eigen::Matrix4d::Identity();
@@ -82,7 +82,7 @@ public:
             current_ = make_rgbd(intensity, depth);
         }
         vobench_tracking_status status = VOBENCH_TRACKING_OK;
-        if (have_previous_) {
+        if (previous_) {
             Host::Stage s(host(), "estimation");
             const Eigen::Matrix4d init = motion_prior_ ? last_motion_ : Eigen::Matrix4d::Identity();
             bool ok = false;
@@ -98,7 +98,6 @@ public:
             }
         }
         std::swap(previous_, current_);
-        have_previous_ = true;
         vobench::rgbd::write_pose(world_from_current_, pose);
         return status;
     }
@@ -143,7 +142,7 @@ private:
     o3d::camera::PinholeCameraIntrinsic intrinsic_;
     o3d::pipelines::odometry::OdometryOption option_;
     std::unique_ptr<o3d::pipelines::odometry::RGBDOdometryJacobian> jacobian_;
-    bool motion_prior_ = true, have_previous_ = false;
+    bool motion_prior_ = true;
     std::optional<o3d::geometry::RGBDImage> current_, previous_;
     Eigen::Isometry3d world_from_current_ = Eigen::Isometry3d::Identity();
     Eigen::Matrix4d last_motion_ = Eigen::Matrix4d::Identity();
