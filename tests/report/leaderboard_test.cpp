@@ -2,6 +2,7 @@
 // criteria summed or averaged as documented, unranked entries with failed cells.
 #include "report/leaderboard.hpp"
 #include "report/bootstrap.hpp"
+#include "report/report_writer.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -92,4 +93,32 @@ TEST_CASE("leaderboard: ranks, ties, criteria, failures", "[report]") {
     // Within the ground truth's own error (σ 1 cm): every ATE of a, not c's.
     CHECK(e[0]["cells"][0]["within_gt_error"] == nlohmann::json::array({"ate.rmse", "rpe.trans.rmse"}));
     CHECK(e[2]["cells"][0]["within_gt_error"] == nlohmann::json::array());
+}
+
+// The protocol sentence of summary.md and the page names the definitions actually used (issue #18 item 4).
+TEST_CASE("the report's protocol text names the protocol used and its own reference", "[report]") {
+    nlohmann::json tum = {{"name", "tum-scripts"},
+                          {"max_difference_s", 0.02},
+                          {"offset_s", 0.0},
+                          {"ate", {{"alignment", "se3"}, {"align_first", 0}}},
+                          {"rpe", {{"delta", 1.0}, {"delta_unit", "s"}}}};
+    const std::string t = protocol_text(tum);
+    CHECK(t.find("Protocol 'tum-scripts'") != std::string::npos);
+    CHECK(t.find("Sturm et al. 2012") != std::string::npos);
+    CHECK(t.find("evaluate_rpe.py") != std::string::npos);
+    CHECK(t.find("RPE at Δ = 1 s") != std::string::npos);
+    CHECK(t.find("Kraft") == std::string::npos);
+    nlohmann::json paper = tum;
+    paper["name"] = "paper";
+    paper["rpe"] = {{"delta", 4.0}, {"delta_unit", "f"}};
+    paper["ate"]["align_first"] = 50;
+    const std::string q = protocol_text(paper);
+    CHECK(q.find("(Kraft et al. 2016, eqs. 11–12)") != std::string::npos);
+    CHECK(q.find("on the first 50 matched poses") != std::string::npos);
+    CHECK(q.find("Sturm") == std::string::npos);
+    // Hand-edited records: a field of the wrong type reads as its default, nothing throws.
+    paper["rpe"]["delta"] = "four";
+    paper["ate"]["alignment"] = 7;
+    CHECK(protocol_text(paper).find("RPE at Δ = 4 f") != std::string::npos);
+    CHECK(protocol_text(nlohmann::json::array()).empty());
 }

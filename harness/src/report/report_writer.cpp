@@ -25,17 +25,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string protocol_text(const nlohmann::json& p) {
-    if (!p.is_object() || !p.contains("name")) return "";
-    std::string text =
-        fmt::format("Protocol '{}': association within {} s.", p["name"].get<std::string>(), p.value("max_difference_s", 0.02));
-    if (p.contains("ate")) text += fmt::format(" ATE after {} alignment.", p["ate"].value("alignment", "se3"));
-    if (p.contains("rpe"))
-        text += fmt::format(" RPE at Δ = {} {} (Kraft et al. 2016, eqs. 11–12).", p["rpe"].value("delta", 4.0),
-                            p["rpe"].value("delta_unit", "f"));
-    return text;
-}
-
 // The cells' timing protocols (run.json timing_protocol) in one paragraph; values that differ between
 // cells are all listed.
 std::string timing_text(const std::vector<RunRecord>& records) {
@@ -67,6 +56,39 @@ std::string timing_text(const std::vector<RunRecord>& records) {
 }
 
 }  // namespace
+
+// The evaluation protocol as used, with the reference that defines it: the paper's RPE (Kraft et al.
+// 2016, eqs. 11–12) or the TUM benchmark's scripts (Sturm et al. 2012; evaluate_ate.py and
+// evaluate_rpe.py, reproduced exactly), never one named for the other.
+std::string protocol_text(const nlohmann::json& p) {
+    if (!p.is_object() || !p.contains("name") || !p["name"].is_string()) return "";
+    // Read from a results folder, which may be hand-edited: a field of the wrong type reads as its default.
+    const auto text_of = [](const nlohmann::json& j, const char* key, const char* fallback) {
+        return j.contains(key) && j[key].is_string() ? clean_text(j[key].get<std::string>()) : std::string(fallback);
+    };
+    const auto number_of = [](const nlohmann::json& j, const char* key, double fallback) {
+        return j.contains(key) && j[key].is_number() ? j[key].get<double>() : fallback;
+    };
+    const bool tum = p["name"] == "tum-scripts";
+    std::string text = fmt::format("Protocol '{}': colour stamps matched to ground truth within {} s", text_of(p, "name", ""),
+                                   number_of(p, "max_difference_s", 0.02));
+    if (number_of(p, "offset_s", 0) != 0) text += fmt::format(" after adding {} s to the estimate's stamps", number_of(p, "offset_s", 0));
+    text += ".";
+    if (p.contains("ate") && p["ate"].is_object()) {
+        text += fmt::format(" ATE after {} alignment", text_of(p["ate"], "alignment", "se3"));
+        if (number_of(p["ate"], "align_first", 0) > 0)
+            text += fmt::format(" on the first {} matched poses", number_of(p["ate"], "align_first", 0));
+        text += tum && text_of(p["ate"], "alignment", "se3") == "se3" ? " (Horn's closed form, as evaluate_ate.py)." : ".";
+    }
+    if (p.contains("rpe") && p["rpe"].is_object())
+        text += fmt::format(" RPE at Δ = {} {}{}", number_of(p["rpe"], "delta", 4), text_of(p["rpe"], "delta_unit", "f"),
+                            tum ? "." : " (Kraft et al. 2016, eqs. 11–12).");
+    if (tum)
+        text +=
+            " Definitions: the TUM RGB-D benchmark's (Sturm et al. 2012), computed as its scripts evaluate_ate.py and evaluate_rpe.py "
+            "compute them.";
+    return text;
+}
 
 ReportResult write_report(const fs::path& out, bool re_evaluate) {
     nlohmann::json sweep = read_json_or_null(out / "sweep.json", 16 << 20);

@@ -22,4 +22,8 @@ struct ReportResult {
 // `re_evaluate`: every cell's metrics recomputed from its trajectory (record/run_record.hpp LoadOptions).
 ReportResult write_report(const std::filesystem::path& out, bool re_evaluate = false);
 
+// One sentence naming the evaluation protocol a cell's protocol JSON (metrics::protocol_json)
+// describes, with its parameters and the reference that defines it; "" for no protocol.
+std::string protocol_text(const nlohmann::json& protocol);
+
 }  // namespace vobench
