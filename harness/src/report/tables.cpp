@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <optional>
 
 namespace vobench {
 
@@ -158,43 +159,114 @@ std::string summary_csv(const std::vector<RunGroup>& groups) {
     return csv;
 }
 
+namespace {
+
+// A formatted value ("0.0123 ± 0.0004†") or already escaped text in LaTeX that pdfLaTeX also takes.
+std::string latex_value(const std::string& v) {
+    std::string t;
+    for (std::size_t i = 0; i < v.size();) {
+        if (v.compare(i, 2, "±") == 0) {
+            t += "$\\pm$";
+            i += 2;
+        } else if (v.compare(i, 3, "†") == 0) {
+            t += "$^\\dagger$";
+            i += 3;
+        } else if (v.compare(i, 3, "‡") == 0) {
+            t += "$^\\ddagger$";
+            i += 3;
+        } else if (v.compare(i, 3, "–") == 0) {
+            t += "--";
+            i += 3;
+        } else if (v.compare(i, 3, "—") == 0) {
+            t += "---";
+            i += 3;
+        } else if (v.compare(i, 2, "Δ") == 0) {  // pdfLaTeX has no Greek in text mode
+            t += "$\\Delta$";
+            i += 2;
+        } else if (v.compare(i, 2, "°") == 0) {
+            t += "$^\\circ$";
+            i += 2;
+        } else
+            t += v[i++];
+    }
+    return t;
+}
+
+// The column heads of one accuracy table: a sensor group of four per sensor.
+std::string latex_head(const std::string& first, const std::vector<std::string>& sensors) {
+    std::string tex = "\\begin{tabular}{l";
+    for (std::size_t k = 0; k < sensors.size(); ++k) tex += "rrrr";
+    tex += "}\n\\toprule\n";
+    // A data set without sensor names (one camera) gets no sensor row.
+    if (!(sensors.size() == 1 && sensors.front().empty())) {
+        for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_text(sensor_title(s)) + "}";
+        tex += " \\\\\n";
+    }
+    tex += first;
+    for (std::size_t k = 0; k < sensors.size(); ++k) tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
+    return tex + " \\\\\n\\midrule\n";
+}
+
+// The mean a comparison may call best: only a group whose every repeat succeeded.
+std::optional<double> rankable_mean(const RunGroup* g, const char* metric) {
+    if (!g || g->failed() > 0) return std::nullopt;
+    const auto s = summarize(*g, metric);
+    return s ? std::optional<double>(s->mean) : std::nullopt;
+}
+
+}  // namespace
+
 std::string summary_latex(const std::vector<RunGroup>& groups, const ReportContext& ctx) {
     std::string tex = fmt::format("% vobench summary of '{}', generated {}. Needs \\usepackage{{booktabs}}.\n% {}\n",
                                   latex_comment(ctx.name), latex_comment(ctx.generated), latex_comment(ctx.protocol_text));
-    for (const std::string& entry : entries_of(groups)) {
+    const std::string protocol = latex_value(latex_text(ctx.protocol_text));
+    const std::vector<std::string> entries = entries_of(groups);
+    // Per entry, the layout of Table 5: one row per sequence.
+    for (const std::string& entry : entries) {
         const auto sensors = sensors_of(groups, entry);
         tex += "\\begin{table}\n\\centering\n\\caption{" + latex_text(entry) +
-               ": ATE and RPE (layout of Table 5, Kraft et al. 2016)}\n\\begin{tabular}{l";
-        for (std::size_t k = 0; k < sensors.size(); ++k) tex += "rrrr";
-        tex += "}\n\\toprule\n";
-        for (const std::string& s : sensors) tex += " & \\multicolumn{4}{c}{" + latex_text(sensor_title(s)) + "}";
-        tex += " \\\\\nSequence";
-        for (std::size_t k = 0; k < sensors.size(); ++k) tex += " & ATE RMSE [m] & ATE std [m] & RPE RMSE [m] & RPE RMSE [$^\\circ$]";
-        tex += " \\\\\n\\midrule\n";
+               ": ATE and RPE (layout of Table 5, Kraft et al. 2016), mean $\\pm$ std over repeats. " + protocol + "}\n" +
+               latex_head("Sequence", sensors);
         for (const std::string& row : rows_of(groups, entry)) {
             tex += latex_text(row);
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
+                for (const Column& c : kAccuracy) tex += " & " + latex_value(format_metric(g, c.metric, c.decimals, gt_sigma(g, c)));
+            }
+            tex += " \\\\\n";
+        }
+        tex += "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n";
+    }
+    if (entries.size() < 2) return tex;
+    // Per sequence, every entry side by side, the lowest mean of each column in bold (only among
+    // entries whose repeats all succeeded): the table a paper compares methods with.
+    std::vector<std::string> rows;
+    for (const std::string& entry : entries)
+        for (const std::string& row : rows_of(groups, entry))
+            if (std::find(rows.begin(), rows.end(), row) == rows.end()) rows.push_back(row);
+    for (const std::string& row : rows) {
+        std::vector<std::string> sensors;
+        for (const std::string& entry : entries)
+            for (const std::string& s : sensors_of(groups, entry))
+                if (find_group(groups, entry, row, s) && std::find(sensors.begin(), sensors.end(), s) == sensors.end())
+                    sensors.push_back(s);
+        std::sort(sensors.begin(), sensors.end());
+        tex += "\\begin{table}\n\\centering\n\\caption{" + latex_text(row) +
+               ": every method, mean $\\pm$ std over repeats; bold, the lowest of each column. " + protocol + "}\n" +
+               latex_head("Method", sensors);
+        for (const std::string& entry : entries) {
+            tex += latex_text(entry);
+            for (const std::string& s : sensors) {
+                const RunGroup* g = find_group(groups, entry, row, s);
                 for (const Column& c : kAccuracy) {
-                    std::string v = format_metric(g, c.metric, c.decimals, gt_sigma(g, c));
-                    std::string t;
-                    for (std::size_t i = 0; i < v.size();) {  // ± † ‡ as LaTeX
-                        if (v.compare(i, 2, "±") == 0) {
-                            t += "$\\pm$";
-                            i += 2;
-                        } else if (v.compare(i, 3, "†") == 0) {
-                            t += "$^\\dagger$";
-                            i += 3;
-                        } else if (v.compare(i, 3, "‡") == 0) {
-                            t += "$^\\ddagger$";
-                            i += 3;
-                        } else if (v.compare(i, 3, "–") == 0) {
-                            t += "--";
-                            i += 3;
-                        } else
-                            t += v[i++];
+                    std::optional<double> best;
+                    for (const std::string& other : entries) {
+                        const auto m = rankable_mean(find_group(groups, other, row, s), c.metric);
+                        if (m && (!best || *m < *best)) best = m;
                     }
-                    tex += " & " + t;
+                    const auto mine = rankable_mean(g, c.metric);
+                    const std::string v = latex_value(format_metric(g, c.metric, c.decimals, gt_sigma(g, c)));
+                    tex += " & " + (mine && best && *mine == *best ? "\\textbf{" + v + "}" : v);
                 }
             }
             tex += " \\\\\n";

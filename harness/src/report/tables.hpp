@@ -5,6 +5,9 @@
 // (algorithm + parameters). Timing in the terms of the paper's §6: mean ms per frame of each stage
 // the plugin reports (put_vo: detection, clustering, tracking, depth_association, estimation), the
 // whole process() call, fps, peak RSS, and the harness's overhead. Values are mean ± std over repeats.
+// summary.tex adds, when there are two entries or more, one table per sequence with every entry side by
+// side and the lowest mean of each column in bold (among entries whose repeats all succeeded); every
+// caption names the protocol.
 #pragma once
 
 #include "report/aggregate.hpp"
