@@ -25,9 +25,14 @@
 
 #include <Eigen/Geometry>
 
-#include <cmath>
+#include <algorithm>
+#include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <optional>
+#include <string>
+#include <tuple>
+#include <vector>
 
 namespace {
 
@@ -78,7 +83,8 @@ public:
             Host::Stage s(host(), "preparation");
             vobench::rgbd::to_gray(*frame.color, intensity);
             vobench::rgbd::wrap(*frame.depth).convertTo(depth, CV_32F, frame.depth_scale);
-            depth.setTo(0, (depth < option_.depth_min_) | (depth > option_.depth_max_) | (depth != depth));
+            // No reading as 0; Open3D itself drops depths outside [depth_min, depth_max] (OdometryOption).
+            depth.setTo(0, (depth != depth) | (depth < 0));
             current_ = make_rgbd(intensity, depth);
         }
         vobench_tracking_status status = VOBENCH_TRACKING_OK;
