@@ -17,6 +17,7 @@ packages=(
   gnuplot-nox                           # the report's figures
   pybind11-dev python3-dev python3-numpy  # the Python bridge plugins (python, python_dataset)
   libopen3d-dev                         # the open3d_rgbd plugin (Open3D's RGB-D odometry)
+  libembree-dev                         # the renderer's ray casting (Embree 3)
 )
 if [ "${1:-}" = "--test" ]; then
   packages+=(

@@ -196,6 +196,78 @@ def open3d_params(args, w):
     expect_rows("open3d", out, {k: p for k, (_, p) in values.items()})
 
 
+def synth_inputs(args, w):
+    """`vobench synth`'s new inputs (issue #15): a camera file, a stamps folder, an effects list, and
+    `synth stats` on folders that are broken. Each is refused with a message naming the file (and
+    line) or the option, exit code 1, and nothing half-written is left as a sequence."""
+    d = os.path.join(w, "synth_inputs")
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    gt = os.path.join(d, "gt.txt")
+    write(gt, "".join(f"{100 + 0.1 * k:.1f} {0.01 * k} 0 1.5 0 0 0 1\n" for k in range(10)))
+
+    def refused(name, cmd, pattern):
+        r = run([args.vobench] + cmd, timeout=120)
+        ok = r.returncode == 1 and re.search(pattern, r.stderr) is not None
+        check(f"synth: {name} is refused naming its cause", ok, f"rc {r.returncode}: {r.stderr[-500:]}")
+
+    cams = {"five_numbers": "640 480 500 500 320\n", "zero_focal": "640 480 0 500 320 240\n", "text": "640 480 a b c d\n",
+            "fractional_size": "640.5 480 500 500 320 240\n", "nan": "640 480 nan 500 320 240\n", "huge": "99999 480 500 500 320 240\n",
+            "empty": "# only a comment\n"}
+    for name, text in cams.items():
+        f = os.path.join(d, f"camera_{name}.txt")
+        write(f, text)
+        refused(f"camera file '{name}'", ["synth", "--camera", f, "--frames", "2", "--out", os.path.join(d, "out")],
+                re.escape(f) + r"(:\d+: |' has no camera line)")
+    refused("an unknown camera name", ["synth", "--camera", "tum-fr7", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"tum-fr7.*neither a camera name")
+    refused("an unknown effect", ["synth", "--effects", "-motion_blurr", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"unknown effect 'motion_blurr'")
+    # --stamps: no lists; unsorted list; stamps all outside the trajectory; with a built-in path.
+    nolists = os.path.join(d, "stamps_none")
+    os.makedirs(nolists)
+    unsorted = os.path.join(d, "stamps_unsorted")
+    write(os.path.join(unsorted, "rgb.txt"), "100.2 rgb/a.png\n100.1 rgb/b.png\n")
+    write(os.path.join(unsorted, "depth.txt"), "100.1 depth/a.png\n")
+    outside = os.path.join(d, "stamps_outside")
+    write(os.path.join(outside, "rgb.txt"), "5.0 rgb/a.png\n")
+    write(os.path.join(outside, "depth.txt"), "5.0 depth/a.png\n")
+    tum = ["synth", "--trajectory", gt, "--trajectory-format", "tum", "--out"]
+    refused("--stamps without rgb.txt", ["synth", "--trajectory", gt, "--trajectory-format", "tum", "--stamps", nolists, "--out",
+                                          os.path.join(d, "o1")], r"rgb\.txt")
+    refused("--stamps with an unsorted rgb.txt", tum + [os.path.join(d, "o2"), "--stamps", unsorted], r"rgb\.txt:2")
+    refused("--stamps outside the trajectory", tum + [os.path.join(d, "o3"), "--stamps", outside], r"time span")
+    refused("--stamps with a built-in trajectory", ["synth", "--stamps", outside, "--out", os.path.join(d, "o4")],
+            r"--stamps needs --layout tum and a trajectory file")
+    check("synth: no sequence is left behind by a refused --stamps run",
+          not any(os.path.exists(os.path.join(d, o, "rgb.txt")) for o in ("o1", "o2", "o3", "o4")))
+    # synth stats on broken folders.
+    good = os.path.join(d, "stats_good")
+    r = run([args.vobench, "synth", "--frames", "3", "--layout", "tum", "--out", good], timeout=300)
+    check("synth: render a 3-frame folder for the stats cases", r.returncode == 0, r.stderr[-500:])
+    r = run([args.vobench, "synth", "stats", good, "--json"], timeout=120)
+    check("synth stats: a healthy folder gives one JSON object per folder", r.returncode == 0 and json.loads(r.stdout)[0]["frames"] == 3,
+          r.stderr[-500:])
+
+    def broken(name, mutate, pattern):
+        b = os.path.join(d, "stats_" + name)
+        shutil.copytree(good, b)
+        mutate(b)
+        refused(f"stats on a folder with {name.replace('_', ' ')}", ["synth", "stats", b], pattern)
+
+    def first_depth(b):
+        return os.path.join(b, [l for l in open(os.path.join(b, "depth.txt")) if not l.startswith("#")][0].split()[1])
+
+    def first_rgb(b):
+        return os.path.join(b, [l for l in open(os.path.join(b, "rgb.txt")) if not l.startswith("#")][0].split()[1])
+
+    broken("no depth list", lambda b: os.remove(os.path.join(b, "depth.txt")), r"depth\.txt")
+    broken("a corrupt colour image", lambda b: write(first_rgb(b), "not a png"), r"cannot be decoded")
+    broken("an 8-bit depth image", lambda b: shutil.copy(first_rgb(b), first_depth(b)), r"not a 16-bit single-channel PNG")
+    broken("a missing depth image", lambda b: os.remove(first_depth(b)), r"not a 16-bit single-channel PNG")
+    broken("a hostile list line", lambda b: write(os.path.join(b, "rgb.txt"), HOSTILE + "\n"), r"rgb\.txt:1")
+
+
 def corpus_plugin(args, kind, fault):
     return os.path.join(args.plugins, f"corpus_{kind}_{fault}.so")
 
@@ -761,7 +833,7 @@ def main():
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
     for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, open3d_params,
-                    lock_and_cli, schemas):
+                    synth_inputs, lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)

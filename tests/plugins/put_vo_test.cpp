@@ -65,7 +65,9 @@ TEST_CASE("put_vo is deterministic: same input and seed, bit-identical trajector
     }
 }
 
-TEST_CASE("put_vo on sim-PUTK² explore1: below the paper's Table 5 RPE, Kinect v2 better than v1", "[put_vo][synth]") {
+// Since issue #15 the rendering is meant to be as hard as real data: put_vo's RPE stays within 1.5× of
+// the paper's real Table 5 values, and Kinect v2 beats Kinect v1 as in the paper.
+TEST_CASE("put_vo on sim-PUTK² explore1: within 1.5x the paper's Table 5 RPE, Kinect v2 better than v1", "[put_vo][synth]") {
     test::TempDir tmp;
     double ate[2], rpe[2];
     const char* sensors[2] = {"kinect1", "kinect2"};
@@ -83,8 +85,8 @@ TEST_CASE("put_vo on sim-PUTK² explore1: below the paper's Table 5 RPE, Kinect 
         rpe[s] = r.evaluation->rpe->trans.rmse;
     }
     INFO("Kinect v1: ATE " << ate[0] << " RPE " << rpe[0] << "; Kinect v2: ATE " << ate[1] << " RPE " << rpe[1]);
-    CHECK(rpe[0] <= 0.017);  // Kraft et al. Table 5, Kinect v1
-    CHECK(rpe[1] <= 0.011);  // Kinect v2
+    CHECK(rpe[0] <= 1.5 * 0.017);  // Kraft et al. Table 5, Kinect v1
+    CHECK(rpe[1] <= 1.5 * 0.011);  // Kinect v2
     CHECK(ate[1] < ate[0]);
 }
 
@@ -109,8 +111,8 @@ TEST_CASE("put_vo on the four sim-PUTK² exploration paths (Table 5 targets)", "
             WARN(path << " " << sensors[s] << ": ATE " << ate[s] << " m, RPE " << rpe[s] << " m, lost " << r.failed_frames << ", "
                       << r.mean_ms() << " ms/frame");
         }
-        CHECK(rpe[0] <= 0.017);
-        CHECK(rpe[1] <= 0.011);
+        CHECK(rpe[0] <= 1.5 * 0.017);
+        CHECK(rpe[1] <= 1.5 * 0.011);
         v2_better += ate[1] < ate[0];
     }
     CHECK(v2_better >= 3);

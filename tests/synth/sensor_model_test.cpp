@@ -82,7 +82,7 @@ TEST_CASE("Kinect v2 axial noise follows Fankhauser et al. 2015 within 20% at 1,
 
 TEST_CASE("range limits hold for both sensors", "[synth][sensor]") {
     for (const SensorModel& sensor : {kinect1(), kinect2()}) {
-        for (double z : {0.4, 4.8}) {
+        for (double z : {0.4, sensor.max_range_m + 0.3}) {
             TestRig rig(z);
             const Renderer r(rig.scene, sensor, 3);
             const RenderedFrame f = r.render(0, rig.pose, rig.pose, 0.1, false);
@@ -125,6 +125,33 @@ TEST_CASE("at a step edge Kinect v1 loses more depth, and Kinect v2 shows flying
     CHECK(static_cast<double>(m1) / b1 > 2.0 * static_cast<double>(m2) / b2);
     CHECK(f2 > 10);
     CHECK(f1 == 0);
+}
+
+TEST_CASE("Kinect v1 returns thin out with range before its limit; the border of its registered image is unmeasured", "[synth][sensor]") {
+    auto valid_share = [](double z, const std::string& effects) {
+        TestRig rig(z);
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects(effects);
+        const Renderer r(rig.scene, sensor, 3);
+        const cv::Mat d = r.render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+        const cv::Rect inner(d.cols / 8, d.rows / 8, 3 * d.cols / 4, 3 * d.rows / 4);
+        return static_cast<double>(cv::countNonZero(d(inner) > 0)) / inner.area();
+    };
+    CHECK(valid_share(2.0, "") > 0.95);
+    const double at_4 = valid_share(4.0, ""), at_5 = valid_share(5.0, "");
+    INFO("valid at 4 m " << at_4 << ", at 5 m " << at_5);
+    CHECK(at_4 < 0.9);
+    CHECK(at_5 < at_4);
+    CHECK(at_5 > 0.1);
+    CHECK(valid_share(5.0, "-far_dropout") > 0.95);
+    // The border: TUM fr1's registered depth never has the top 34 rows nor the right 40 columns.
+    TestRig rig(2.0);
+    SensorModel tum_like = kinect1();
+    tum_like.depth = tum_like.color;  // a full-resolution registered grid, as TUM recorded
+    const cv::Mat d = Renderer(rig.scene, tum_like, 3).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+    CHECK(cv::countNonZero(d.rowRange(0, 34) > 0) == 0);
+    CHECK(cv::countNonZero(d.colRange(600, 640) > 0) == 0);
+    CHECK(cv::countNonZero(d.rowRange(40, 470).colRange(20, 590) > 0) > 0.95 * 430 * 570);
 }
 
 TEST_CASE("rendering is deterministic in the seed", "[synth][determinism]") {

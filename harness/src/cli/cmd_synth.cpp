@@ -1,14 +1,72 @@
 // vobench synth — render a synthetic Kinect v1 / v2 RGB-D sequence with ground truth.
 #include "cli/commands.hpp"
+#include "synth/frame_statistics.hpp"
 #include "synth/sequence_writer.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <spdlog/spdlog.h>
 
 #include <unistd.h>
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 
 namespace vobench::cli {
+
+namespace {
+
+// `vobench synth stats DIR…`: one column per folder, one row per statistic (frame_statistics.hpp).
+CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
+    auto* c = synth.add_subcommand("stats", "Image and depth statistics of TUM-layout folders (real or rendered), side by side");
+    static std::vector<std::string> folders;
+    static std::size_t max_frames = 0;
+    static bool json = false;
+    c->add_option("folders", folders, "TUM-layout folders (rgb.txt, depth.txt; depth 5000 units per metre)")->required();
+    c->add_option("--max-frames", max_frames, "At most N colour-depth pairs per folder, evenly spaced (0: all)");
+    c->add_flag("--json", json, "Print one JSON object");
+    c->callback([&exit_code] {
+        std::vector<synth::FolderStatistics> all;
+        for (const auto& f : folders) all.push_back(synth::measure_folder(f, max_frames));
+        if (json) {
+            nlohmann::json j = nlohmann::json::array();
+            for (const auto& s : all) {
+                nlohmann::json values = nlohmann::json::object();
+                for (const auto& v : s.values) values[v.key] = std::isfinite(v.value) ? nlohmann::json(v.value) : nlohmann::json();
+                j.push_back({{"folder", s.folder.string()}, {"frames", s.frames}, {"statistics", values}});
+            }
+            std::cout << j.dump(2) << "\n";
+            exit_code = 0;
+            return;
+        }
+        // Rows in the first folder's order, then any statistic only a later folder has.
+        std::vector<std::pair<std::string, std::string>> rows;
+        for (const auto& s : all)
+            for (const auto& v : s.values)
+                if (std::none_of(rows.begin(), rows.end(), [&](const auto& r) { return r.first == v.key; }))
+                    rows.emplace_back(v.key, v.label);
+        std::cout << "| statistic |";
+        for (const auto& s : all) std::cout << " " << s.folder.filename().string() << " (" << s.frames << " frames) |";
+        std::cout << "\n|---|";
+        for (std::size_t k = 0; k < all.size(); ++k) std::cout << "---:|";
+        std::cout << "\n";
+        for (const auto& [key, label] : rows) {
+            std::cout << "| " << label << " |";
+            for (const auto& s : all) {
+                const auto it = std::find_if(s.values.begin(), s.values.end(), [&](const auto& v) { return v.key == key; });
+                std::cout << " "
+                          << (it == s.values.end() || !std::isfinite(it->value) ? std::string("–") : fmt::format("{:.4g}", it->value))
+                          << " |";
+            }
+            std::cout << "\n";
+        }
+        exit_code = 0;
+    });
+    return c;
+}
+
+}  // namespace
 
 void add_synth_command(CLI::App& app, int& exit_code) {
     auto* c = app.add_subcommand("synth", "Render a synthetic Kinect v1/v2 RGB-D sequence with ground truth");
@@ -20,16 +78,31 @@ void add_synth_command(CLI::App& app, int& exit_code) {
         ->check(CLI::IsMember({"putk2-raw", "tum"}))
         ->capture_default_str();
     c->add_option("--camera-in-marker", o.camera_in_marker, "Camera-in-marker pose file (default: PUT's for the sensor)");
+    c->add_option(
+        "--camera", o.camera,
+        "Colour camera: putk2-kinect1, putk2-kinect2, tum-fr1, tum-fr2, tum-fr3, or a file `width height fx fy cx cy [k1 k2 p1 p2 "
+        "k3 k4 k5 k6]` (default: the sensor's own)");
+    static std::string stamps;
+    c->add_option("--stamps", stamps,
+                  "A TUM folder: render one frame per colour-depth pair of its rgb.txt/depth.txt, each image at its own stamp (needs "
+                  "--trajectory-format tum)");
     c->add_option("--frames", o.frames, "Render only the first N poses (0: all)");
     c->add_option("--seed", o.seed, "Seed of the scene and of all noise")->capture_default_str();
     c->add_option("--layout", o.layout, "Output layout: tum, putk2, putk2-tum, icl-tum, icl-povray")
         ->check(CLI::IsMember({"tum", "putk2", "putk2-tum", "icl-tum", "icl-povray"}))
         ->capture_default_str();
+    c->add_option("--effects", o.effects,
+                  "Effects of the sensor models: all, none, or a comma list of [+|-]name applied to the defaults, e.g. "
+                  "-motion_blur,-dark_dropout (names: vobench synth --effects help)");
     c->add_option("--blur", blur, "Motion blur over the exposure: on or off")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
-    c->add_option("--out", out, "Output folder")->required();
-    c->callback([&exit_code] {
+    c->add_option("--out", out, "Output folder (required to render)");
+    auto* stats = add_stats_command(*c, exit_code);
+    c->callback([&exit_code, c, stats] {
+        if (c->got_subcommand(stats)) return;
+        if (out.empty()) throw CLI::RequiredError("--out");
         o.blur = blur == "on";
         o.out = out;
+        o.stamps = stamps;
         const bool tty = isatty(fileno(stderr));
         const auto report = synth::synthesize(o, [tty](uint64_t done, uint64_t total) {
             if (tty)
@@ -41,6 +114,9 @@ void add_synth_command(CLI::App& app, int& exit_code) {
         if (tty) std::fprintf(stderr, "\n");
         std::cout << fmt::format("{}: {} frames of {} along {} in {:.2f} s ({:.2f} frames/s)\n", out, report.frames, o.sensor, o.trajectory,
                                  report.seconds, report.fps());
+        if (report.skipped_stamps > 0)
+            spdlog::warn("--stamps: {} colour-depth pairs lie outside the trajectory's time span and were not rendered",
+                         report.skipped_stamps);
         exit_code = 0;
     });
 }

@@ -37,4 +37,23 @@ inline double gaussian_fast(uint64_t h) {
     return (sum / 65536.0 - 2.0) * 1.7320508075688772;  // variance of the sum of 4 U(0,1) is 1/3
 }
 
+// Value noise on the integer lattice (smoothly interpolated corner values), in [-1, 1]: the building
+// block of the textures and of the blobs in which depth returns get lost.
+inline double smoothstep01(double t) { return t * t * (3.0 - 2.0 * t); }
+
+inline double lattice_noise(double x, double y, uint64_t seed) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
+    // One mixing round per lattice corner (large odd multipliers keep neighbouring corners apart).
+    auto corner = [&](int64_t a, int64_t b) {
+        return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^
+                                   (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) -
+               1.0;
+    };
+    const double tx = smoothstep01(x - fx), ty = smoothstep01(y - fy);
+    const double top = corner(ix, iy) + tx * (corner(ix + 1, iy) - corner(ix, iy));
+    const double bottom = corner(ix, iy + 1) + tx * (corner(ix + 1, iy + 1) - corner(ix, iy + 1));
+    return top + ty * (bottom - top);
+}
+
 }  // namespace vobench::synth

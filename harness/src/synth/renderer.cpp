@@ -14,11 +14,6 @@
 namespace vobench::synth {
 namespace {
 
-constexpr int kTile = 16;
-
-// Salt values keep the random streams of different effects apart.
-enum Salt : uint64_t { kColorNoise = 1, kDisparityNoise, kLateral, kDropout, kFlying, kFlyingMix, kExposure, kTofNoise };
-
 // sRGB encoding (IEC 61966-2-1) as a 4096-entry table over [0, 1] linear: 8-bit output cannot tell.
 double srgb(double linear) {
     static const std::vector<double> table = [] {
@@ -54,86 +49,83 @@ Renderer::RayMap Renderer::make_ray_map(const PinholeCamera& c) {
 Renderer::Renderer(const Scene& scene, const SensorModel& sensor, uint64_t seed)
     : scene_(scene), sensor_(sensor), seed_(seed), color_rays_(make_ray_map(sensor.color)), depth_rays_(make_ray_map(sensor.depth)) {}
 
-std::vector<std::vector<int>> Renderer::cull(const RayMap& rays, const Eigen::Isometry3d& pose) const {
-    const int tiles_x = (rays.width + kTile - 1) / kTile, tiles_y = (rays.height + kTile - 1) / kTile;
-    std::vector<std::vector<int>> lists(static_cast<std::size_t>(tiles_x * tiles_y));
-    const Eigen::Vector3d origin = pose.translation();
-    const Eigen::Matrix3d R = pose.linear();
-    tbb::parallel_for(0, tiles_y, [&](int ty) {
-        for (int tx = 0; tx < tiles_x; ++tx) {
-            // The tile's corner rays, widened by one pixel, bound its pixels' rays (distortion is smooth).
-            const int u0 = std::max(0, tx * kTile - 1), v0 = std::max(0, ty * kTile - 1);
-            const int u1 = std::min(rays.width - 1, (tx + 1) * kTile), v1 = std::min(rays.height - 1, (ty + 1) * kTile);
-            const Eigen::Vector3d c[4] = {R * rays.dirs[v0 * rays.width + u0], R * rays.dirs[v0 * rays.width + u1],
-                                          R * rays.dirs[v1 * rays.width + u1], R * rays.dirs[v1 * rays.width + u0]};
-            Eigen::Vector3d normals[4];
-            for (int k = 0; k < 4; ++k) normals[k] = c[k].cross(c[(k + 1) % 4]);  // inward for clockwise image order
-            const Eigen::Vector3d centre = (c[0] + c[1] + c[2] + c[3]).normalized();
-            for (int k = 0; k < 4; ++k)
-                if (normals[k].dot(centre) < 0) normals[k] = -normals[k];
-            auto& list = lists[static_cast<std::size_t>(ty * tiles_x + tx)];
-            for (std::size_t b = 0; b < scene_.boxes.size(); ++b) {
-                const Box& box = scene_.boxes[b];
-                bool outside = false;
-                if (!box.shell) {
-                    for (int k = 0; k < 4 && !outside; ++k) {
-                        outside = true;
-                        for (int corner = 0; corner < 8 && outside; ++corner) {
-                            const Eigen::Vector3d p((corner & 1) ? box.max.x() : box.min.x(), (corner & 2) ? box.max.y() : box.min.y(),
-                                                    (corner & 4) ? box.max.z() : box.min.z());
-                            outside = normals[k].dot(p - origin) < 0;
-                        }
-                    }
-                }
-                if (!outside) list.push_back(static_cast<int>(b));
-            }
-        }
-    });
-    return lists;
+std::vector<Eigen::Isometry3d> Renderer::row_poses(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double interval_s,
+                                                   double readout_s, int rows) {
+    std::vector<Eigen::Isometry3d> poses(static_cast<std::size_t>(rows), pose);
+    if (readout_s <= 0 || interval_s == 0) return poses;
+    const Eigen::Isometry3d motion = pose.inverse() * next_pose;
+    const Eigen::AngleAxisd aa(motion.linear());
+    for (int v = 0; v < rows; ++v) {
+        const double s = (static_cast<double>(v) / rows - 0.5) * readout_s / interval_s;
+        Eigen::Isometry3d T = Eigen::Isometry3d::Identity();
+        T.linear() = Eigen::AngleAxisd(aa.angle() * s, aa.axis()).toRotationMatrix();
+        T.translation() = motion.translation() * s;
+        poses[static_cast<std::size_t>(v)] = pose * T;
+    }
+    return poses;
 }
 
 RenderedFrame Renderer::render(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
                                bool blur) const {
+    PlannedFrame f;
+    f.color_pose = f.depth_pose = pose;
+    f.next_pose = next_pose;
+    f.blur_interval_s = frame_interval_s;
+    return render(frame, f, blur);
+}
+
+RenderedFrame Renderer::render(uint64_t frame, const PlannedFrame& f, bool blur) const {
     RenderedFrame out;
-    render_color(frame, pose, next_pose, frame_interval_s, blur, out);
+    render_color(frame, f, blur, out);
     if (sensor_.principle == DepthPrinciple::StructuredLight)
-        render_depth_structured_light(frame, pose, out);
+        render_depth_structured_light(frame, f, out);
     else
-        render_depth_time_of_flight(frame, pose, out);
+        render_depth_time_of_flight(frame, f, out);
     return out;
 }
 
-void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
-                            bool blur, RenderedFrame& out) const {
+void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, RenderedFrame& out) const {
+    const Eigen::Isometry3d& pose = f.color_pose;
+    const Eigen::Isometry3d& next_pose = f.next_pose;
+    const double frame_interval_s = f.blur_interval_s;
+    const Effects& fx = sensor_.effects;
     const int W = color_rays_.width, H = color_rays_.height;
-    const auto tiles = cull(color_rays_, pose);
-    const int tiles_x = (W + kTile - 1) / kTile;
+    const auto rows = row_poses(pose, next_pose, frame_interval_s, fx.rolling_shutter ? sensor_.color_readout_s : 0.0, H);
     cv::Mat linear(H, W, CV_32FC3);
     cv::Mat range(H, W, CV_64FC1);  // camera-frame z of each colour pixel, for the blur
-    const Eigen::Matrix3d R = pose.linear();
-    const Eigen::Vector3d o = pose.translation();
     const double pixel_angle = 1.0 / sensor_.color.fx;
-    // Auto-exposure settles within ±3% from frame to frame.
-    const double gain = sensor_.gain * (1.0 + 0.03 * (2.0 * uniform(hash(seed_, kExposure, frame)) - 1.0));
     tbb::parallel_for(0, H, [&](int v) {
+        const Eigen::Matrix3d R = rows[static_cast<std::size_t>(v)].linear();
+        const Eigen::Vector3d o = rows[static_cast<std::size_t>(v)].translation();
         for (int u = 0; u < W; ++u) {
             const Eigen::Vector3d dir_cam = color_rays_.dirs[static_cast<std::size_t>(v) * W + u];
             const Eigen::Vector3d dir = R * dir_cam;
             Hit hit;
             Eigen::Vector3f c(0, 0, 0);
             double z = 1e3;
-            if (scene_.intersect(o, dir, 1e-6, 1e3, hit, &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)])) {
+            if (scene_.intersect(o, dir, 1e-6, 1e3, hit)) {
                 const double cos_in = std::max(0.05, std::abs(hit.normal.dot(dir)));
-                c = scene_.shade(hit, hit.t * pixel_angle / cos_in);
+                c = scene_.shade(hit, dir, hit.t * pixel_angle / cos_in, fx.highlights);
                 z = hit.t * dir_cam.z();
             }
-            linear.at<cv::Vec3f>(v, u) = cv::Vec3f(c.z(), c.y(), c.x()) * static_cast<float>(gain);  // BGR
+            linear.at<cv::Vec3f>(v, u) = cv::Vec3f(c.z(), c.y(), c.x());  // BGR
             range.at<double>(v, u) = z;
         }
     });
 
+    // Auto-exposure: the gain that brings the mean luminance the camera is adapted to (a lagging
+    // average of earlier frames, PlannedFrame::exposure_reference; this frame's own for the first) to
+    // the target, so bright surfaces clip where the view also holds dark ones, as real images do.
+    const cv::Scalar mean_bgr = cv::mean(linear);
+    out.mean_luminance = 0.0722 * mean_bgr[0] + 0.7152 * mean_bgr[1] + 0.2126 * mean_bgr[2];
+    double gain = sensor_.gain;
+    if (fx.auto_exposure) {
+        const double reference = f.exposure_reference > 0 ? f.exposure_reference : out.mean_luminance;
+        gain *= std::clamp(sensor_.exposure_target / std::max(reference, 1e-4), 0.25, 8.0);
+    }
+    linear *= gain;
     cv::Mat blurred = linear;
-    if (blur && frame_interval_s > 0) {
+    if (blur && fx.motion_blur && frame_interval_s != 0) {  // negative: the pose given is an earlier one
         // Motion blur as a post-process: each pixel averages the sharp image along the path its
         // scene point travels in the image during the exposure (centred on the frame's stamp).
         const Eigen::Isometry3d motion = pose.inverse() * next_pose;  // camera motion over one interval
@@ -176,115 +168,30 @@ void Renderer::render_color(uint64_t frame, const Eigen::Isometry3d& pose, const
         });
     }
 
+    // Lens and demosaicing point spread (scaled with the image: σ is given for 640 columns).
+    if (fx.optics_blur && sensor_.optics_sigma_px > 0) {
+        const double sigma = sensor_.optics_sigma_px * W / 640.0;
+        cv::GaussianBlur(blurred, blurred, cv::Size(0, 0), sigma, sigma, cv::BORDER_REFLECT);
+    }
+    // Vignetting: brightness falls as r² towards the corners (r = 1 at a corner).
+    const double half_diagonal2 = 0.25 * (static_cast<double>(W) * W + static_cast<double>(H) * H);
+    const double vignetting = fx.vignetting ? sensor_.vignetting : 0.0;
+    const double noise_dn = fx.image_noise ? sensor_.color_noise_dn : 0.0;
     out.color.create(H, W, CV_8UC3);
     tbb::parallel_for(0, H, [&](int v) {
         for (int u = 0; u < W; ++u) {
-            const cv::Vec3f c = blurred.at<cv::Vec3f>(v, u);
+            const double du = u - sensor_.color.cx, dv = v - sensor_.color.cy;
+            const float fall_off = static_cast<float>(1.0 - vignetting * std::min(1.0, (du * du + dv * dv) / half_diagonal2));
+            const cv::Vec3f c = blurred.at<cv::Vec3f>(v, u) * fall_off;
             cv::Vec3b& px = out.color.at<cv::Vec3b>(v, u);
             for (int ch = 0; ch < 3; ++ch) {
                 const double noise =
-                    sensor_.color_noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch));
+                    noise_dn > 0 ? noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch))
+                                 : 0.0;
                 px[ch] = cv::saturate_cast<uint8_t>(255.0 * srgb(c[ch]) + noise);
             }
         }
     });
-}
-
-bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u, int v,
-                              DepthRay& out) const {
-    // Lateral noise: the sampling position jitters by a fraction of a pixel.
-    const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
-    const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
-    Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
-    dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
-    dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
-    dir_cam.normalize();
-    const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
-    const int tiles_x = (depth_rays_.width + kTile - 1) / kTile;
-    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit,
-                          &tiles[static_cast<std::size_t>((v / kTile) * tiles_x + u / kTile)]))
-        return false;
-    out.z = out.hit.t * dir_cam.z();
-    out.incidence = std::acos(std::min(1.0, std::abs(out.hit.normal.dot(dir))));
-    return true;
-}
-
-void Renderer::render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const {
-    // Kinect v1: depth on a 320×240 grid registered to the colour camera, from disparity against the
-    // projector pattern (Khoshelham & Elberink 2012): z = f·b/d, d quantised to 1/8 px with noise.
-    const int W = depth_rays_.width, H = depth_rays_.height;
-    const Eigen::Isometry3d& depth_pose = pose;  // registered: the depth grid is the colour camera's
-    const auto tiles = cull(depth_rays_, depth_pose);
-    const Eigen::Vector3d projector = pose * sensor_.projector_in_color;
-    const double fb = sensor_.ir_focal_px * sensor_.baseline_m;
-    out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
-    tbb::parallel_for(0, H, [&](int v) {
-        for (int u = 0; u < W; ++u) {
-            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            DepthRay ray;
-            if (!cast_depth_ray(frame, depth_pose, tiles, u, v, ray)) continue;
-            const double z = ray.z;
-            if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
-            if (ray.incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
-            const Hit& hit = ray.hit;
-            // The projector's shadow: a point the pattern cannot reach has no disparity.
-            if (scene_.occluded(hit.point + hit.normal * 1e-4, projector)) continue;
-            const double d = fb / z + sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
-            const double dq = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
-            if (dq <= 0) continue;
-            out.depth_native.at<float>(v, u) = static_cast<float>(fb / dq);
-        }
-    });
-    // The paper rescales 320×240 depth to the 640×480 colour image (nearest: no invented depths).
-    cv::resize(out.depth_native, out.depth, cv::Size(sensor_.color.width, sensor_.color.height), 0, 0, cv::INTER_NEAREST);
-}
-
-rgbd::Intrinsics intrinsics_of(const PinholeCamera& c) { return {c.fx, c.fy, c.cx, c.cy, c.distortion_count, c.distortion}; }
-
-void Renderer::render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const {
-    // Kinect v2: its own 512×424 camera beside the colour camera; axial noise after Fankhauser et al.
-    // (2015); flying pixels mixing fore- and background at discontinuities; isolated dropouts.
-    const int W = depth_rays_.width, H = depth_rays_.height;
-    const Eigen::Isometry3d depth_pose = pose * sensor_.depth_in_color;
-    const auto tiles = cull(depth_rays_, depth_pose);
-    cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1), noisy = cv::Mat::zeros(H, W, CV_32FC1);
-    tbb::parallel_for(0, H, [&](int v) {
-        for (int u = 0; u < W; ++u) {
-            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            DepthRay ray;
-            if (!cast_depth_ray(frame, depth_pose, tiles, u, v, ray)) continue;
-            const double z = ray.z, incidence = ray.incidence;
-            truth.at<float>(v, u) = static_cast<float>(z);
-            if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
-            if (incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
-            if (uniform(hash(seed_, kDropout, frame, pixel)) < sensor_.dropout_probability) continue;
-            noisy.at<float>(v, u) = static_cast<float>(z + kinect2_sigma_z(z, incidence) * gaussian(hash(seed_, kTofNoise, frame, pixel)));
-        }
-    });
-    // Flying pixels: a pixel whose footprint straddles a depth step returns a mixture of both depths.
-    out.depth_native = noisy.clone();
-    tbb::parallel_for(0, H, [&](int v) {
-        for (int u = 0; u < W; ++u) {
-            const float z = truth.at<float>(v, u);
-            if (noisy.at<float>(v, u) <= 0) continue;
-            float other = z;
-            const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
-            for (int k = 0; k < 4; ++k) {
-                const int x = u + du[k], y = v + dv[k];
-                if (x < 0 || y < 0 || x >= W || y >= H) continue;
-                const float n = truth.at<float>(y, x);
-                if (n > 0 && std::abs(n - z) > 0.05f && std::abs(n - z) > std::abs(other - z)) other = n;
-            }
-            if (other == z) continue;
-            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            if (uniform(hash(seed_, kFlying, frame, pixel)) >= sensor_.flying_pixel_probability) continue;
-            const double alpha = 0.15 + 0.7 * uniform(hash(seed_, kFlyingMix, frame, pixel));
-            out.depth_native.at<float>(v, u) = static_cast<float>(noisy.at<float>(v, u) + alpha * (other - z));
-        }
-    });
-    // To the 1920×1080 colour camera, z-buffered splats (see plugins/common/depth_registration.hpp).
-    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color), sensor_.depth_in_color,
-                                     cv::Size(sensor_.color.width, sensor_.color.height));
 }
 
 }  // namespace vobench::synth

@@ -4,6 +4,7 @@
 // output is byte-identical for a seed whatever the thread count.
 #pragma once
 
+#include "synth/frame_plan.hpp"
 #include "synth/scene.hpp"
 #include "synth/sensor_model.hpp"
 
@@ -15,10 +16,25 @@
 
 namespace vobench::synth {
 
+// Salt values keep the random streams of the renderer's effects apart (random_field.hpp).
+enum RenderSalt : uint64_t {
+    kColorNoise = 1,
+    kDisparityNoise,
+    kLateral,
+    kDropout,
+    kFlying,
+    kFlyingMix,
+    kExposure,
+    kTofNoise,
+    kLostReturn,
+    kEdgeDropout
+};
+
 struct RenderedFrame {
-    cv::Mat color;         // CV_8UC3, BGR, colour camera size
-    cv::Mat depth;         // CV_32FC1 metres registered to the colour camera (colour size); 0 = no reading
-    cv::Mat depth_native;  // CV_32FC1 metres as the depth camera measures it (its own size and pose)
+    cv::Mat color;              // CV_8UC3, BGR, colour camera size
+    cv::Mat depth;              // CV_32FC1 metres registered to the colour camera (colour size); 0 = no reading
+    cv::Mat depth_native;       // CV_32FC1 metres as the depth camera measures it (its own size and pose)
+    double mean_luminance = 0;  // of the colour image before exposure (linear), for the auto-exposure
 };
 
 class Renderer {
@@ -30,6 +46,9 @@ public:
     // image integrates the motion over the exposure time (`frame_interval_s` apart from it).
     RenderedFrame render(uint64_t frame_index, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s,
                          bool blur) const;
+    // The colour image at f.color_pose, the depth image at f.depth_pose (the colour camera's pose at
+    // the depth stamp: the depth camera sits at depth_in_color from it).
+    RenderedFrame render(uint64_t frame_index, const PlannedFrame& f, bool blur) const;
 
     const SensorModel& sensor() const { return sensor_; }
 
@@ -39,21 +58,25 @@ private:
         std::vector<Eigen::Vector3d> dirs;  // unit ray direction per pixel, camera frame
     };
     static RayMap make_ray_map(const PinholeCamera& camera);
-    // Candidate boxes per 16×16 tile for a camera pose (conservative frustum culling).
-    std::vector<std::vector<int>> cull(const RayMap& rays, const Eigen::Isometry3d& pose) const;
+    // The camera pose at which each image row is exposed: a rolling shutter reads row v out at
+    // (v / rows − ½)·readout_s around the frame's stamp, while the camera moves from `pose` towards
+    // `next_pose` (reached `interval_s` later). All rows share `pose` when readout_s is 0.
+    static std::vector<Eigen::Isometry3d> row_poses(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double interval_s,
+                                                    double readout_s, int rows);
 
-    void render_color(uint64_t frame, const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double frame_interval_s, bool blur,
-                      RenderedFrame& out) const;
+    void render_color(uint64_t frame, const PlannedFrame& f, bool blur, RenderedFrame& out) const;
     struct DepthRay {
         Hit hit;
         double z = 0;          // depth along the depth camera's optical axis
         double incidence = 0;  // angle between ray and surface normal, rad
     };
     // One depth pixel's ray, with lateral jitter; false when it hits nothing.
-    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, const std::vector<std::vector<int>>& tiles, int u, int v,
-                        DepthRay& out) const;
-    void render_depth_structured_light(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
-    void render_depth_time_of_flight(uint64_t frame, const Eigen::Isometry3d& pose, RenderedFrame& out) const;
+    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const;
+    // Whether the return of a depth ray is lost on the surface it hit (dark, glossy, glass; and for
+    // Kinect v1 with range): blobs fixed on the surface, their edges flickering from frame to frame.
+    bool return_lost(uint64_t frame, uint64_t pixel, const DepthRay& ray) const;
+    void render_depth_structured_light(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
+    void render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
 
     const Scene& scene_;
     SensorModel sensor_;

@@ -13,9 +13,12 @@
 #include <Eigen/Geometry>
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 namespace vobench::synth {
+
+class RayIndex;
 
 struct Box {
     Eigen::Vector3d min, max;
@@ -42,14 +45,20 @@ struct Scene {
     std::vector<PointLight> lights;
     double floor_z = 3.0;
 
-    // Nearest hit of the ray origin + t·dir (dir unit), t in (t_min, t_max); false when none. With
-    // `candidates`, only those boxes are tested (the renderer's per-tile culling).
-    bool intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min, double t_max, Hit& hit,
-                   const std::vector<int>* candidates = nullptr) const;
+    // Nearest hit of the ray origin + t·dir (dir unit), t in (t_min, t_max); false when none. Goes
+    // through Embree once build_index() has run (after the last change to `boxes`), else tests every
+    // box (slabs; small test scenes).
+    bool intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min, double t_max, Hit& hit) const;
+    void build_index();
     // True when anything blocks the segment from `from` towards `to` (shadow rays).
     bool occluded(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
-    // Linear RGB radiance seen along a ray that hit `hit`, with pixel footprint (m) for filtering.
-    Eigen::Vector3f shade(const Hit& hit, double footprint) const;
+    // Linear RGB radiance seen along `view_dir` (unit, towards the surface) at `hit`, with pixel
+    // footprint (m) for filtering: ambient + diffuse point lights, Blinn–Phong highlights on glossy
+    // materials, emission (windows).
+    Eigen::Vector3f shade(const Hit& hit, const Eigen::Vector3d& view_dir, double footprint, bool highlights = true) const;
+
+private:
+    std::shared_ptr<const RayIndex> index_;  // shared by copies of the scene
 };
 
 struct OfficeOptions {
@@ -57,9 +66,12 @@ struct OfficeOptions {
     double floor_z = 3.0;    // ceiling cameras 3 m above the floor
     double clearance = 0.7;  // free radius around the path, metres
     double margin = 1.1;     // mean distance from the path's bounding box to the walls, metres
+    double min_room = 6.0;   // the room is at least this wide and long, metres (a real office's size)
 };
 
-// `camera_poses`: the camera-to-world poses the sensors will take. After walls and furniture, every
+// `camera_poses`: the camera-to-world poses the sensors will take. Where a camera looks down (hand-held
+// over a desk, as in TUM's sequences), a desk with clutter is placed where its view meets desk height:
+// people point cameras at things. After walls and furniture, every
 // 5th pose is checked by casting a coarse fan of rays over the central field of view; where less than
 // half of them meet something within 0.5–4.3 m, a textured cabinet is added ahead (beside the path,
 // never within `clearance` of it), so the depth sensor always has structure in range.

@@ -1,5 +1,6 @@
 #include "synth/sensor_model.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -29,8 +30,26 @@ SensorModel kinect1() {
     // cameraZnacznikKin1.txt: x y z qw qx qy qz.
     s.camera_in_marker = pose(-0.11474, -0.18851, -0.078635, 0.5129, -0.48145, -0.49094, 0.51393);
     s.exposure_s = 0.015;
-    s.color_noise_dn = 2.0;
+    s.color_noise_dn = 1.2;
+    s.optics_sigma_px = 0.6;
     s.lateral_sigma_px = 0.3;
+    // Range: TUM's Kinect v1 depth reaches past 4.5 m and thins out there (fr1/rpy sample: 2.5 % of the
+    // valid depth beyond 4 m, 32 % missing; `vobench synth stats`); Khoshelham & Elberink 2012 fit
+    // their noise model to 5 m.
+    s.max_range_m = 6.0;
+    // Both Kinect v1 cameras are rolling-shutter CMOS sensors (Kerl et al. 2015 model their images so);
+    // the readout time is not published: 25 ms of the 33 ms frame is assumed.
+    s.color_readout_s = 0.025;
+    s.depth_readout_s = 0.025;
+    s.far_dropout_start_m = 3.5;
+    s.glancing_limit_deg = 75.0;
+    // The registered depth border, measured on the missing-depth maps of TUM fr1 (rpy and desk agree):
+    // 40 columns on the right and 34 rows at the top never measured, 3 rows at the bottom; on the left a
+    // ramp whose width falls with range as the IR–colour parallax f·b/z (≈ 13 px at 1 m).
+    s.border_left_px_m = 13.0;
+    s.border_right_px = 40;
+    s.border_top_px = 34;
+    s.border_bottom_px = 3;
     return s;
 }
 
@@ -60,7 +79,70 @@ SensorModel kinect2() {
     s.exposure_s = 0.033;
     s.color_noise_dn = 2.5;
     s.lateral_sigma_px = 0.2;
+    // Time of flight keeps more of dark surfaces than structured light, at a higher noise (Sarbolandi
+    // et al. 2015, Fig. 14; Lachat et al. 2015: black and specular targets lose returns).
+    s.color_readout_s = 0.025;  // its colour camera reads rows out one after another too (assumed 25 ms)
+    s.depth_readout_s = 0.0;    // ToF: all pixels integrate together
+    s.dark_albedo = 0.05;
+    s.dark_dropout_max = 0.4;
+    s.gloss_dropout = 0.5;
     return s;
+}
+
+namespace {
+
+// The switches in one table: name, member.
+using EffectMember = bool Effects::*;
+const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
+    static const std::vector<std::pair<std::string, EffectMember>> table = {
+        {"motion_blur", &Effects::motion_blur},           {"optics_blur", &Effects::optics_blur},
+        {"image_noise", &Effects::image_noise},           {"vignetting", &Effects::vignetting},
+        {"auto_exposure", &Effects::auto_exposure},       {"highlights", &Effects::highlights},
+        {"rolling_shutter", &Effects::rolling_shutter},   {"depth_noise", &Effects::depth_noise},
+        {"projector_shadow", &Effects::projector_shadow}, {"depth_border", &Effects::depth_border},
+        {"dark_dropout", &Effects::dark_dropout},         {"glancing_dropout", &Effects::glancing_dropout},
+        {"far_dropout", &Effects::far_dropout},           {"edge_dropout", &Effects::edge_dropout},
+        {"flying_pixels", &Effects::flying_pixels},       {"stamp_offsets", &Effects::stamp_offsets}};
+    return table;
+}
+
+}  // namespace
+
+Effects parse_effects(const std::string& spec) {
+    Effects e;
+    std::size_t start = 0;
+    while (start <= spec.size()) {
+        const std::size_t comma = std::min(spec.find(',', start), spec.size());
+        std::string item = spec.substr(start, comma - start);
+        start = comma + 1;
+        item.erase(0, item.find_first_not_of(" \t"));
+        item.erase(item.find_last_not_of(" \t") + 1);
+        if (item.empty()) continue;
+        if (item == "all" || item == "none") {
+            for (const auto& [name, member] : effect_table()) e.*member = item == "all" && name != "stamp_offsets";
+            continue;
+        }
+        const bool on = item[0] != '-';
+        if (item[0] == '+' || item[0] == '-') item.erase(0, 1);
+        bool found = false;
+        for (const auto& [name, member] : effect_table())
+            if (name == item) {
+                e.*member = on;
+                found = true;
+            }
+        if (!found) {
+            std::string names;
+            for (const auto& [name, member] : effect_table()) names += (names.empty() ? "" : ", ") + name;
+            throw std::invalid_argument("--effects: unknown effect '" + item + "' (all, none, or [+|-] one of: " + names + ")");
+        }
+    }
+    return e;
+}
+
+std::vector<std::pair<std::string, bool>> effect_list(const Effects& e) {
+    std::vector<std::pair<std::string, bool>> list;
+    for (const auto& [name, member] : effect_table()) list.emplace_back(name, e.*member);
+    return list;
 }
 
 SensorModel sensor_by_name(const std::string& name) {

@@ -8,6 +8,8 @@
 
 #include <array>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace vobench::synth {
 
@@ -19,6 +21,35 @@ struct PinholeCamera {
 };
 
 enum class DepthPrinciple { StructuredLight, TimeOfFlight };
+
+// Every effect of the sensor models, each one switchable (`vobench synth --effects`), so that what each
+// costs an algorithm can be measured. All on by default except stamp_offsets, which only applies to
+// built-in trajectories (with --stamps the real stamps are used whatever it says).
+struct Effects {
+    // Colour camera.
+    bool motion_blur = true;      // integration over the exposure time
+    bool optics_blur = true;      // lens and demosaicing point spread (Gaussian)
+    bool image_noise = true;      // shot and read noise
+    bool vignetting = true;       // radial fall-off of the lens
+    bool auto_exposure = true;    // a gain that follows the scene's brightness with a lag
+    bool highlights = true;       // specular reflection on glossy materials
+    bool rolling_shutter = true;  // rows exposed one after another while the camera moves
+    // Depth.
+    bool depth_noise = true;       // the sensor's axial and lateral noise (and Kinect v1's quantisation)
+    bool projector_shadow = true;  // Kinect v1: no depth where the projector's pattern cannot reach
+    bool depth_border = true;      // Kinect v1: the registered depth image's unmeasured border
+    bool dark_dropout = true;      // lost returns on dark, glossy and glass surfaces
+    bool glancing_dropout = true;  // no return beyond the glancing-angle limit
+    bool far_dropout = true;       // Kinect v1: returns thin out with range before the limit
+    bool edge_dropout = true;      // Kinect v1: the correlation window fails across depth steps
+    bool flying_pixels = true;     // Kinect v2: mixed depths at discontinuities
+    bool stamp_offsets = false;    // built-in trajectories: depth stamps off the colour stamps
+};
+
+// Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
+// "none,+depth_noise"); throws std::invalid_argument naming an unknown effect and listing the names.
+Effects parse_effects(const std::string& spec);
+std::vector<std::pair<std::string, bool>> effect_list(const Effects& e);  // name, on — for synth.json
 
 struct SensorModel {
     std::string name;  // "kinect1" | "kinect2"
@@ -40,10 +71,26 @@ struct SensorModel {
     //   σ_z(z, θ) = 1.5 − 0.5·z + 0.3·z² + 0.1·z^1.5·θ²/(π/2 − θ)²
     double flying_pixel_probability = 0.6;  // of a pixel at a depth discontinuity (> 5 cm step)
     double dropout_probability = 0.003;     // isolated invalid pixels
+    // Failures of the returns (both sensors; sources in sensor_model.cpp).
+    double dark_albedo = 0.08;              // returns are lost in blobs on surfaces darker than this (linear albedo)
+    double dark_dropout_max = 0.55;         // ... with this probability on black
+    double gloss_dropout = 0.4;             // share of a glossy surface's returns lost (× gloss)
+    double dropout_blob_m = 0.02;           // size of the lost-return blobs on the surface
+    double far_dropout_start_m = 3.5;       // Kinect v1: dropout rises linearly from here to max_range_m
+    double edge_dropout_probability = 0.5;  // Kinect v1: at a depth step over 5 % of the range
+    // Kinect v1's registered depth border in pixels of a 640×480 colour image (scaled with its width):
+    // left f·b_IR/z (IR–colour parallax), right, top and bottom fixed.
+    double border_left_px_m = 13.0, border_right_px = 40, border_top_px = 34, border_bottom_px = 3;
     // Colour camera exposure and noise.
     double exposure_s = 0.015;
-    double color_noise_dn = 2.0;  // σ of additive noise, 8-bit digital numbers
+    double color_noise_dn = 2.0;            // σ of additive noise, 8-bit digital numbers
+    double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
+    double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
+    double exposure_target = 0.3;           // auto-exposure: linear mean luminance aimed at (sRGB ≈ 149)
+    double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene
     double gain = 1.0;
+    double color_readout_s = 0.0, depth_readout_s = 0.0;  // rolling shutter: first to last row
+    Effects effects;
 };
 
 SensorModel kinect1();

@@ -1,6 +1,8 @@
 #include "synth/sequence_writer.hpp"
 
 #include "metrics/trajectory_io.hpp"
+#include "synth/camera_catalog.hpp"
+#include "synth/frame_plan.hpp"
 #include "synth/renderer.hpp"
 #include "synth/trajectory_families.hpp"
 #include "util/files.hpp"
@@ -72,12 +74,13 @@ struct FrameFiles {
     cv::Mat color8, depth16;
 };
 
-FrameFiles frame_files(const std::string& layout, uint64_t k, const std::string& stamp, const RenderedFrame& frame) {
+FrameFiles frame_files(const std::string& layout, uint64_t k, const std::string& stamp, const std::string& depth_stamp,
+                       const RenderedFrame& frame) {
     FrameFiles f;
     f.color8 = frame.color;
     if (layout == "tum") {  // registered to colour, 5000 units per metre
         f.color = "rgb/" + stamp + ".png";
-        f.depth = "depth/" + stamp + ".png";
+        f.depth = "depth/" + depth_stamp + ".png";
         frame.depth.convertTo(f.depth16, CV_16UC1, 5000.0);
         return f;
     }
@@ -93,7 +96,7 @@ FrameFiles frame_files(const std::string& layout, uint64_t k, const std::string&
     // PUTK²: the depth camera's own image in millimetres (Kinect v1: the 320×240 registered grid;
     // Kinect v2: 512×424, not registered — the reader registers it).
     f.color = layout == "putk2" ? fmt::format("rgb_{:05d}.png", k) : "rgb/" + stamp + ".png";
-    f.depth = layout == "putk2" ? fmt::format("depth_{:05d}.png", k) : "depth/" + stamp + ".png";
+    f.depth = layout == "putk2" ? fmt::format("depth_{:05d}.png", k) : "depth/" + depth_stamp + ".png";
     frame.depth_native.convertTo(f.depth16, CV_16UC1, 1000.0);
     return f;
 }
@@ -202,17 +205,30 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     if (o.layout != "tum" && o.layout != "putk2" && o.layout != "putk2-tum" && o.layout != "icl-tum" && o.layout != "icl-povray")
         throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum, icl-tum, icl-povray)");
     if (o.out.empty()) throw std::invalid_argument("--out is required");
-    const SensorModel sensor = sensor_by_name(o.sensor);
+    SensorModel sensor = sensor_by_name(o.sensor);
+    if (!o.camera.empty()) sensor = with_color_camera(sensor, camera_by_name_or_file(o.camera));
+    sensor.effects = parse_effects(o.effects);
+    if (!o.blur) sensor.effects.motion_blur = false;
     const Paths paths = load_paths(o, sensor);
     if (paths.camera.size() < 2) throw std::invalid_argument("the trajectory has fewer than two poses");
-    const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, paths.camera.size()) : paths.camera.size();
+    if (!o.stamps.empty() && (o.layout != "tum" || !paths.marker.empty()))
+        throw std::invalid_argument("--stamps needs --layout tum and a trajectory file of camera poses (--trajectory-format tum)");
+    std::size_t skipped = 0;
+    std::vector<PlannedFrame> plan =
+        o.stamps.empty() ? plan_every_pose(paths.camera) : plan_from_tum_stamps(paths.camera, o.stamps, skipped);
+    if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, paths.camera, o.seed);
+    const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, plan.size()) : plan.size();
+    plan.resize(count);
 
     // The room is fitted around the whole trajectory (not only the frames rendered), so that a
-    // sequence's first N frames are the first N frames of the full sequence.
+    // sequence's first N frames are the first N frames of the full sequence. It is built in the
+    // office frame (z down); the poses written stay in the trajectory's own frame.
     std::vector<Eigen::Isometry3d> poses;
     for (const auto& c : paths.camera) poses.push_back(c.isometry());
     OfficeOptions office;
     office.seed = o.seed;
+    const Eigen::Isometry3d to_office = office_from_world(poses, office.floor_z);
+    for (auto& p : poses) p = to_office * p;
     const Scene scene = build_office(poses, office);
     const Renderer renderer(scene, sensor, o.seed);
 
@@ -230,22 +246,33 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     std::string matched = "# frame rgb depth\n", associations;
     metrics::Trajectory gt;
     const auto start = std::chrono::steady_clock::now();
-    std::future<void> pending;  // PNG encoding of frame k overlaps rendering of frame k + 1
+    double exposure_reference = 0;  // what the auto-exposure is adapted to (0: not yet)
+    std::future<void> pending;      // PNG encoding of frame k overlaps rendering of frame k + 1
     for (uint64_t k = 0; k < count; ++k) {
-        const auto& pose = paths.camera[k];
-        const auto& next = paths.camera[std::min<uint64_t>(k + 1, paths.camera.size() - 1)];
-        const double interval = next.t - pose.t;
-        RenderedFrame frame = renderer.render(k, pose.isometry(), next.isometry(), interval > 0 ? interval : 0.1, o.blur);
-        const std::string stamp = fmt::format("{:.6f}", pose.t);
+        const PlannedFrame& planned = plan[k];
+        PlannedFrame in_office = planned;
+        in_office.color_pose = to_office * planned.color_pose;
+        in_office.depth_pose = to_office * planned.depth_pose;
+        in_office.next_pose = to_office * planned.next_pose;
+        in_office.exposure_reference = exposure_reference;
+        RenderedFrame frame = renderer.render(k, in_office, o.blur);
+        // The auto-exposure follows the scene's brightness with time constant τ (first order).
+        const double dt = k + 1 < count ? std::abs(plan[k + 1].color_stamp - planned.color_stamp) : 0.0;
+        const double follow = 1.0 - std::exp(-dt / sensor.exposure_time_constant_s);
+        exposure_reference =
+            exposure_reference > 0 ? exposure_reference + follow * (frame.mean_luminance - exposure_reference) : frame.mean_luminance;
+        const std::string stamp = fmt::format("{:.6f}", planned.color_stamp);
+        const std::string depth_stamp = fmt::format("{:.6f}", planned.depth_stamp);
+        const auto pose = metrics::StampedPose::from_isometry(planned.color_stamp, planned.color_pose);
         if (povray) {
-            write_povray_frame(o.out, k, pose.isometry(), frame, sensor.color);
+            write_povray_frame(o.out, k, planned.color_pose, frame, sensor.color);
             gt_sim += sim_rows(pose.isometry());
             if (progress) progress(k + 1, count);
             continue;
         }
-        const FrameFiles files = frame_files(o.layout, k, stamp, frame);
+        const FrameFiles files = frame_files(o.layout, k, stamp, depth_stamp, frame);
         rgb_list += stamp + " " + files.color + "\n";
-        depth_list += stamp + " " + files.depth + "\n";
+        depth_list += depth_stamp + " " + files.depth + "\n";
         matched += fmt::format("{} {} {}\n", k, files.color, files.depth);
         associations += fmt::format("{} {} {} {}\n", k, files.depth, k, files.color);
         metrics::StampedPose g = pose;
@@ -272,6 +299,12 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         write_file_atomic(o.out / "rgb.txt", rgb_list);
         write_file_atomic(o.out / "depth.txt", depth_list);
     }
+    if (!o.stamps.empty() && count > 0) {
+        // As TUM's own files: the motion-capture poses over the frames' span, at their own stamps.
+        gt.clear();
+        for (const auto& p : paths.camera)
+            if (p.t >= plan.front().color_stamp - 0.05 && p.t <= plan.back().color_stamp + 0.05) gt.push_back(p);
+    }
     if (!povray) {
         metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
                            putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
@@ -290,16 +323,34 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"vobench_version", VOBENCH_VERSION},
                               {"sensor", sensor.name},
                               {"trajectory", o.trajectory},
+                              {"camera", o.camera.empty() ? "default" : o.camera},
+                              {"color_camera",
+                               {{"width", sensor.color.width},
+                                {"height", sensor.color.height},
+                                {"fx", sensor.color.fx},
+                                {"fy", sensor.color.fy},
+                                {"cx", sensor.color.cx},
+                                {"cy", sensor.color.cy},
+                                {"distortion", std::vector<double>(sensor.color.distortion.begin(),
+                                                                   sensor.color.distortion.begin() + sensor.color.distortion_count)}}},
+                              {"stamps", o.stamps.string()},
+                              {"skipped_stamps", skipped},
                               {"frames", count},
                               {"seed", o.seed},
-                              {"blur", o.blur},
+                              {"blur", sensor.effects.motion_blur},
+                              {"effects",
+                               [&] {
+                                   nlohmann::json e = nlohmann::json::object();
+                                   for (const auto& [name, on] : effect_list(sensor.effects)) e[name] = on;
+                                   return e;
+                               }()},
                               {"layout", o.layout},
                               {"frame_rate_hz", kFrameRateHz},
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
                               {"room_boxes", scene.boxes.size()}};
     write_json_atomic(o.out / "synth.json", meta);
-    return {count, seconds};
+    return {count, skipped, seconds};
 }
 
 }  // namespace vobench::synth

@@ -5,7 +5,9 @@
 // (camera poses, TUM convention, full precision), camera.txt (colour intrinsics and distortion), plus
 // marker_groundtruth.txt (PUTK² raw `id;rx;ry;rz;tx;ty;tz`) and camera_in_marker.txt (`x y z qw qx qy
 // qz`) from which groundtruth.txt follows by eq. 10, and synth.json with every parameter used.
-// Stamps are frame / 10 s (PUTK² records at 10 Hz).
+// Stamps are frame / 10 s (PUTK² records at 10 Hz), or with `stamps` those of a real TUM folder (colour and
+// depth each at its own stamp); groundtruth.txt then holds the input trajectory's poses over the frames' span
+// (±50 ms), as TUM's own files do.
 //
 // Layouts `putk2` (rgb_%05d.png, depth_%05d.png, matched.txt: `frame rgb depth`) and `putk2-tum`
 // (rgb/, depth/, rgb.txt, depth.txt) hold the depth camera's own image in millimetres (Kinect v1:
@@ -24,22 +26,26 @@
 namespace vobench::synth {
 
 // Bumped whenever rendering changes what a seed produces: caches of older sequences are then stale.
-constexpr int kGeneratorVersion = 1;
+constexpr int kGeneratorVersion = 2;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
     std::string trajectory = "explore1";          // a family name, or a file
     std::string trajectory_format = "putk2-raw";  // for a file: putk2-raw (marker) or tum (camera poses)
     std::string camera_in_marker;                 // putk2-raw file: override the sensor's camera-in-marker pose
+    std::string camera;                           // colour camera: a name (camera_catalog.hpp) or file; empty: the sensor's
+    std::filesystem::path stamps;                 // a TUM folder: render at its rgb.txt/depth.txt stamps (frame_plan.hpp)
     uint64_t frames = 0;                          // 0: the whole trajectory
     uint64_t seed = 1;
     std::string layout = "tum";
     bool blur = true;
+    std::string effects;  // sensor_model.hpp parse_effects(): "" = the defaults
     std::filesystem::path out;
 };
 
 struct SynthReport {
     uint64_t frames = 0;
+    uint64_t skipped_stamps = 0;  // --stamps pairs outside the trajectory's time span
     double seconds = 0;
     double fps() const { return seconds > 0 ? static_cast<double>(frames) / seconds : 0.0; }
 };

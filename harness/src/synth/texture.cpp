@@ -14,31 +14,13 @@ float visibility(double size, double footprint) {
     return static_cast<float>(std::clamp((r - 0.5) / 1.0, 0.0, 1.0));
 }
 
-double smooth(double t) { return t * t * (3.0 - 2.0 * t); }
-
-// Value noise on the integer lattice, in [-1, 1].
-double value_noise(double x, double y, uint64_t seed) {
-    const double fx = std::floor(x), fy = std::floor(y);
-    const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
-    // One mixing round per lattice corner (large odd multipliers keep neighbouring corners apart).
-    auto corner = [&](int64_t a, int64_t b) {
-        return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^
-                                   (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) -
-               1.0;
-    };
-    const double tx = smooth(x - fx), ty = smooth(y - fy);
-    const double top = corner(ix, iy) + tx * (corner(ix + 1, iy) - corner(ix, iy));
-    const double bottom = corner(ix, iy + 1) + tx * (corner(ix + 1, iy + 1) - corner(ix, iy + 1));
-    return top + ty * (bottom - top);
-}
-
 // Fractal noise whose octaves are dropped as they fall below the footprint.
 double fbm(double u, double v, double base_size, int octaves, double footprint, uint64_t seed) {
     double sum = 0, amp = 1, size = base_size, norm = 0;
     for (int k = 0; k < octaves; ++k) {
         const float vis = visibility(size, footprint);
         if (vis <= 0) break;
-        sum += amp * vis * value_noise(u / size, v / size, seed + k);
+        sum += amp * vis * lattice_noise(u / size, v / size, seed + k);
         norm += amp;
         amp *= 0.55;
         size *= 0.5;
@@ -90,12 +72,12 @@ Eigen::Vector3f poster(const Material& m, double u, double v, double footprint) 
     return mix(mean, inside ? colour : ground, vis);
 }
 
-// Small rectangles (2–7 cm) scattered on a 16 cm lattice, half of the cells occupied; dark or light.
+// Small rectangles (2–7 cm) scattered on a 12 cm lattice, 65 % of the cells occupied; dark or light.
 Eigen::Vector3f marks(const Material& m, double u, double v, double footprint, const Eigen::Vector3f& ground) {
-    const double cell = 0.16;
+    const double cell = 0.12;
     const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
     const uint64_t h = hash(m.seed ^ 0x5bd1e995ull, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
-    if (uniform(h) < 0.5) return ground;
+    if (uniform(h) < 0.35) return ground;
     const double w = 0.02 + 0.05 * uniform(mix64(h + 1)), hgt = 0.02 + 0.05 * uniform(mix64(h + 2));
     const double ou = (cell - w) * uniform(mix64(h + 3)), ov = (cell - hgt) * uniform(mix64(h + 4));
     const double lu = u - static_cast<double>(cu) * cell - ou, lv = v - static_cast<double>(cv) * cell - ov;
@@ -106,6 +88,36 @@ Eigen::Vector3f marks(const Material& m, double u, double v, double footprint, c
     const Eigen::Vector3f mean = ground + (mark - ground) * area;  // what a blurred view averages to
     const bool inside = lu >= 0 && lu < w && lv >= 0 && lv < hgt;
     return mix(mean, inside ? mark : ground, vis);
+}
+
+// A photo-like print: three octave bands of colour noise with 1/f amplitude, quantised into regions
+// with hard edges (objects in a photo), over a light ground.
+Eigen::Vector3f photo(const Material& m, double u, double v, double footprint) {
+    const double s = 0.25 * m.scale;
+    const double a = fbm(u, v, s, 7, footprint, m.seed), b = fbm(u, v, s, 7, footprint, m.seed + 31),
+                 c = fbm(u, v, 0.5 * s, 6, footprint, m.seed + 57);
+    const float vis = visibility(0.02, footprint);
+    // Regions: the sign pattern of a coarse field gives object-like patches with sharp boundaries.
+    const double region = fbm(u, v, 0.6 * s, 4, footprint, m.seed + 91);
+    const float edge = region > 0.05 ? 1.0f : region < -0.05 ? 0.0f : static_cast<float>((region + 0.05) / 0.1);
+    const float hard = vis * edge + (1 - vis) * 0.5f;
+    const Eigen::Vector3f field(static_cast<float>(0.5 + 0.9 * a), static_cast<float>(0.5 + 0.9 * b), static_cast<float>(0.5 + 0.9 * c));
+    const Eigen::Vector3f light = m.base.cwiseProduct(field.cwiseMax(0.05f).cwiseMin(1.4f));
+    const Eigen::Vector3f dark = m.accent.cwiseProduct(field.cwiseMax(0.05f).cwiseMin(1.4f)) * 0.6f;
+    return mix(dark, light, hard).cwiseMin(Eigen::Vector3f::Ones());
+}
+
+// Keys of 1.9 cm pitch with 0.3 cm gaps, a pale legend mark on some; the frame around is the base.
+Eigen::Vector3f keys(const Material& m, double u, double v, double footprint) {
+    const double pitch = 0.019;
+    const double fu = u / pitch - std::floor(u / pitch), fv = v / pitch - std::floor(v / pitch);
+    const float vis = visibility(0.004, footprint);
+    const bool gap = fu < 0.16 || fv < 0.16;
+    const uint64_t h = hash(m.seed, static_cast<uint64_t>(std::floor(u / pitch) + 1e5), static_cast<uint64_t>(std::floor(v / pitch) + 1e5));
+    const bool legend = !gap && std::abs(fu - 0.55) < 0.12 && std::abs(fv - 0.5) < 0.16 && uniform(h) < 0.8;
+    const Eigen::Vector3f key = legend ? m.accent : m.base;
+    const Eigen::Vector3f mean = 0.75f * m.base + 0.2f * m.base * 0.4f + 0.05f * m.accent;
+    return mix(mean, gap ? m.base * 0.4f : key, vis);
 }
 
 }  // namespace
@@ -137,6 +149,19 @@ Eigen::Vector3f albedo(const Material& m, double u, double v, double footprint) 
         }
         case TextureStyle::Pages: return pages(m, u, v, footprint);
         case TextureStyle::Poster: return poster(m, u, v, footprint);
+        case TextureStyle::Photo: return photo(m, u, v, footprint);
+        case TextureStyle::Keys: return keys(m, u, v, footprint);
+        case TextureStyle::Screen: {
+            // Nearly black with faint smudges; what it shows is mostly the specular highlight.
+            const double n = fbm(u, v, 0.1, 3, footprint, m.seed);
+            return m.base * static_cast<float>(1.0 + 0.3 * n);
+        }
+        case TextureStyle::Fabric: {
+            const float vis = visibility(0.004, footprint);
+            const double weave = 0.5 + 0.25 * (std::sin(u / 0.0015) * std::sin(v / 0.0015));
+            const double n = fbm(u, v, 0.15, 4, footprint, m.seed);
+            return mix(m.base, m.accent, static_cast<float>(std::clamp(vis * weave + (1 - vis) * 0.5 + 0.3 * n, 0.0, 1.0)));
+        }
         case TextureStyle::Carpet: {
             const double n = fbm(u, v, 0.05 * m.scale, 4, footprint, m.seed) + 0.5 * fbm(u, v, 0.8, 3, footprint, m.seed + 7);
             return mix(m.base, m.accent, static_cast<float>(std::clamp(0.5 + 0.8 * n, 0.0, 1.0)));

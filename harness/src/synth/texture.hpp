@@ -13,7 +13,10 @@
 
 namespace vobench::synth {
 
-enum class TextureStyle { Paint, Tiles, Wood, Pages, Poster, Carpet };
+// Photo: a photo-like print, a 1/f colour field (Field 1987: natural images' amplitude spectra fall
+// as 1/f) cut into regions with hard edges. Keys: a keyboard's key grid. Screen: a switched-off
+// monitor, nearly black and glossy. Fabric: a fine weave (chairs, curtains).
+enum class TextureStyle { Paint, Tiles, Wood, Pages, Poster, Carpet, Photo, Keys, Screen, Fabric };
 
 struct Material {
     TextureStyle style = TextureStyle::Paint;
@@ -21,6 +24,8 @@ struct Material {
     Eigen::Vector3f accent{0.2f, 0.2f, 0.2f};
     float scale = 1.0f;  // metres per pattern unit
     uint64_t seed = 0;
+    float gloss = 0.0f;     // share of specular (Blinn–Phong) reflection: highlights, and lost depth (sensor_model.hpp)
+    float emission = 0.0f;  // linear radiance added regardless of light (windows, lamps): saturates the camera
 };
 
 // Albedo at surface point (u, v) (metres) with pixel footprint `footprint` (metres).

@@ -6,7 +6,8 @@
 // 16-bit PNG with depth_factor units per metre (5000), registered to colour by the Kinect driver.
 // Intrinsics come from the `intrinsics` option; `auto` reads camera.txt when the folder has one (as
 // `vobench synth` writes), else guesses from the folder name (freiburg1/2/3) and says so in a warning.
-#include "tum_lists.hpp"  // plugins/common
+#include "tum_cameras.hpp"  // plugins/common
+#include "tum_lists.hpp"    // plugins/common
 
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
@@ -28,16 +29,11 @@ namespace {
 namespace fs = std::filesystem;
 using vobench::sdk::Error;
 
-struct Intrinsics {
-    double fx, fy, cx, cy;
-    double d[5];  // k1 k2 p1 p2 k3 (TUM's d0..d4)
-};
-
-// From the TUM RGB-D benchmark's "file formats" page (colour camera calibration).
-const Intrinsics kFr1{517.3, 516.5, 318.6, 255.3, {0.2624, -0.9531, -0.0054, 0.0026, 1.1633}};
-const Intrinsics kFr2{520.9, 521.0, 325.1, 249.7, {0.2312, -0.7849, -0.0033, -0.0001, 0.9172}};
-const Intrinsics kFr3{535.4, 539.2, 320.1, 247.6, {0, 0, 0, 0, 0}};
-const Intrinsics kRosDefault{525.0, 525.0, 319.5, 239.5, {0, 0, 0, 0, 0}};
+using Intrinsics = vobench::tum::PublishedCamera;
+using vobench::tum::kFr1;
+using vobench::tum::kFr2;
+using vobench::tum::kFr3;
+using vobench::tum::kRosDefault;
 
 class TumReader : public vobench::sdk::Dataset {
 public:

@@ -1,0 +1,94 @@
+#include "synth/camera_catalog.hpp"
+
+#include "tum_cameras.hpp"  // plugins/common
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace vobench::synth {
+namespace {
+
+CameraSpec tum_camera(const tum::PublishedCamera& c) {
+    CameraSpec spec;
+    spec.color = {tum::kImageWidth, tum::kImageHeight, c.fx, c.fy, c.cx, c.cy, 5, {c.d[0], c.d[1], c.d[2], c.d[3], c.d[4], 0, 0, 0}};
+    spec.depth_divisor = 1;
+    return spec;
+}
+
+CameraSpec read_camera_file(const std::string& path) {
+    std::ifstream in(path);
+    if (!in) throw std::invalid_argument("--camera: '" + path + "' is neither a camera name nor a readable file");
+    std::string line;
+    int line_number = 0;
+    while (std::getline(in, line)) {
+        ++line_number;
+        if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+        std::istringstream ss(line);
+        std::vector<double> v;
+        double x;
+        while (ss >> x) v.push_back(x);
+        if (v.empty() && ss.eof()) continue;
+        const std::string where = path + ":" + std::to_string(line_number) + ": ";
+        if (!ss.eof()) throw std::invalid_argument(where + "not a list of numbers");
+        if (v.size() < 6 || v.size() > 14)
+            throw std::invalid_argument(where + "expected `width height fx fy cx cy [up to 8 distortion coefficients]`, got " +
+                                        std::to_string(v.size()) + " numbers");
+        for (double value : v)
+            if (!std::isfinite(value)) throw std::invalid_argument(where + "a value is not finite");
+        if (v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] < 16 || v[1] < 16 || v[0] > 8192 || v[1] > 8192)
+            throw std::invalid_argument(where + "width and height must be whole numbers of pixels in 16..8192");
+        if (v[2] <= 0 || v[3] <= 0) throw std::invalid_argument(where + "focal lengths must be positive");
+        CameraSpec spec;
+        spec.color.width = static_cast<int>(v[0]);
+        spec.color.height = static_cast<int>(v[1]);
+        spec.color.fx = v[2];
+        spec.color.fy = v[3];
+        spec.color.cx = v[4];
+        spec.color.cy = v[5];
+        spec.color.distortion_count = static_cast<int>(v.size()) - 6;
+        for (std::size_t i = 6; i < v.size(); ++i) spec.color.distortion[i - 6] = v[i];
+        spec.depth_divisor = 1;
+        return spec;
+    }
+    throw std::invalid_argument("--camera: '" + path + "' has no camera line");
+}
+
+}  // namespace
+
+std::vector<std::string> camera_names() { return {"putk2-kinect1", "putk2-kinect2", "tum-fr1", "tum-fr2", "tum-fr3"}; }
+
+CameraSpec camera_by_name_or_file(const std::string& name) {
+    if (name == "putk2-kinect1") return {kinect1().color, 2};
+    if (name == "putk2-kinect2") return {kinect2().color, 1};
+    if (name == "tum-fr1") return tum_camera(tum::kFr1);
+    if (name == "tum-fr2") return tum_camera(tum::kFr2);
+    if (name == "tum-fr3") return tum_camera(tum::kFr3);
+    if (!std::filesystem::is_regular_file(name)) {
+        std::string names;
+        for (const auto& n : camera_names()) names += (names.empty() ? "" : ", ") + n;
+        throw std::invalid_argument("--camera: '" + name + "' is neither a camera name (" + names + ") nor a file");
+    }
+    return read_camera_file(name);
+}
+
+SensorModel with_color_camera(SensorModel s, const CameraSpec& camera) {
+    s.color = camera.color;
+    if (s.principle == DepthPrinciple::StructuredLight) {
+        const double k = camera.depth_divisor;
+        const PinholeCamera& c = camera.color;
+        s.depth = {c.width / camera.depth_divisor,
+                   c.height / camera.depth_divisor,
+                   c.fx / k,
+                   c.fy / k,
+                   c.cx / k,
+                   c.cy / k,
+                   c.distortion_count,
+                   c.distortion};
+    }
+    return s;
+}
+
+}  // namespace vobench::synth

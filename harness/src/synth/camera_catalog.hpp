@@ -1,0 +1,35 @@
+// camera_catalog.hpp — colour cameras by name for `vobench synth --camera NAME|FILE`.
+//
+// Names: putk2-kinect1 and putk2-kinect2 (PUT's own calibrations, the sensors' defaults) and tum-fr1,
+// tum-fr2, tum-fr3 (the TUM RGB-D benchmark's published intrinsics and distortion, 640×480), so a
+// real TUM trajectory can be rendered through its own camera and read back with
+// `--dataset tum --option intrinsics=fr1`.
+//
+// A FILE holds one line `width height fx fy cx cy [k1 k2 p1 p2 k3 k4 k5 k6]` (OpenCV's rational
+// model, up to 8 coefficients); '#' starts a comment.
+#pragma once
+
+#include "synth/sensor_model.hpp"
+
+#include <string>
+#include <vector>
+
+namespace vobench::synth {
+
+struct CameraSpec {
+    PinholeCamera color;
+    // Kinect v1 only: the registered depth grid is the colour image divided by this (PUTK² recorded
+    // 320×240 depth beside 640×480 colour; TUM recorded depth at the full 640×480).
+    int depth_divisor = 1;
+};
+
+std::vector<std::string> camera_names();
+
+// Throws std::invalid_argument naming the name or file (and the line) when it cannot be used.
+CameraSpec camera_by_name_or_file(const std::string& name_or_file);
+
+// The sensor seen through another colour camera: Kinect v1's registered depth grid follows the colour
+// camera (its size divided by `depth_divisor`); Kinect v2 keeps its own depth camera.
+SensorModel with_color_camera(SensorModel sensor, const CameraSpec& camera);
+
+}  // namespace vobench::synth

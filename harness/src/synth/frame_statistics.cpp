@@ -1,0 +1,223 @@
+#include "synth/frame_statistics.hpp"
+
+#include "metrics/association.hpp"
+#include "tum_lists.hpp"  // plugins/common
+#include "util/files.hpp"
+
+#include <fmt/format.h>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace vobench::synth {
+namespace {
+
+constexpr int kBorderPx = 16;
+constexpr int kPatch = 8;
+struct Band {
+    double lo, hi;
+    const char* name;
+};
+constexpr Band kRangeBands[] = {{0.0, 1.0, "0_1m"}, {1.0, 2.0, "1_2m"}, {2.0, 3.0, "2_3m"}, {3.0, 4.0, "3_4m"}, {4.0, 1e9, "4m_up"}};
+constexpr Band kBrightnessBands[] = {{0, 40, "grey_0_40"}, {40, 80, "grey_40_80"}, {80, 160, "grey_80_160"}, {160, 256, "grey_160_255"}};
+
+// Pooled ratios (numerator and denominator summed over frames) and per-frame means, in first-use order.
+class Accumulator {
+public:
+    void ratio(const std::string& key, const std::string& label, double num, double den) {
+        auto& e = entry(key, label);
+        e.sum += num;
+        e.count += den;
+    }
+    void mean(const std::string& key, const std::string& label, double value) {
+        auto& e = entry(key, label);
+        e.sum += value;
+        e.count += 1;
+    }
+    void sample(const std::string& key, const std::string& label, double value) { entry(key, label).samples.push_back(value); }
+    void maximum(const std::string& key, const std::string& label, double value) {
+        auto& e = entry(key, label);
+        e.is_max = true;
+        e.sum = e.count == 0 ? value : std::max(e.sum, value);
+        e.count = 1;
+    }
+    std::vector<Statistic> result() const {
+        std::vector<Statistic> out;
+        for (const auto& key : order_) {
+            const Entry& e = entries_.at(key);
+            double v = std::numeric_limits<double>::quiet_NaN();
+            if (!e.samples.empty()) {
+                auto s = e.samples;
+                std::nth_element(s.begin(), s.begin() + static_cast<std::ptrdiff_t>(s.size() / 2), s.end());
+                v = s[s.size() / 2];
+            } else if (e.count > 0) {
+                v = e.is_max ? e.sum : e.sum / e.count;
+            }
+            out.push_back({key, e.label, v});
+        }
+        return out;
+    }
+
+private:
+    struct Entry {
+        std::string label;
+        double sum = 0, count = 0;
+        bool is_max = false;
+        std::vector<double> samples;  // medians
+    };
+    Entry& entry(const std::string& key, const std::string& label) {
+        auto [it, inserted] = entries_.try_emplace(key);
+        if (inserted) {
+            it->second.label = label;
+            order_.push_back(key);
+        }
+        return it->second;
+    }
+    std::map<std::string, Entry> entries_;
+    std::vector<std::string> order_;
+};
+
+void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc) {
+    const int W = depth_m.cols, H = depth_m.rows;
+    cv::Mat missing = depth_m <= 0;
+    const double total = static_cast<double>(W) * H;
+    acc.ratio("missing_depth.all", "missing depth, all pixels", cv::countNonZero(missing), total);
+    cv::Mat interior = cv::Mat::zeros(H, W, CV_8U);
+    interior(cv::Rect(kBorderPx, kBorderPx, W - 2 * kBorderPx, H - 2 * kBorderPx)).setTo(255);
+    const double border_pixels = total - cv::countNonZero(interior);
+    acc.ratio("missing_depth.border", "missing depth, 16-px border", cv::countNonZero(missing & ~interior), border_pixels);
+    acc.ratio("missing_depth.interior", "missing depth, interior", cv::countNonZero(missing & interior), total - border_pixels);
+    for (const Band& b : kBrightnessBands) {
+        const cv::Mat in_band = (grey >= b.lo) & (grey < b.hi);
+        acc.ratio(std::string("missing_depth.") + b.name, fmt::format("missing depth, grey {:.0f}–{:.0f}", b.lo, b.hi - 1),
+                  cv::countNonZero(missing & in_band), cv::countNonZero(in_band));
+    }
+    // A hole's range: the smallest valid depth within 8 px (holes with none count as "far").
+    cv::Mat filled = depth_m.clone();
+    filled.setTo(1e6, missing);
+    cv::erode(filled, filled, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(17, 17)));
+    for (const Band& b : kRangeBands) {
+        const cv::Mat in_band = (filled >= b.lo) & (filled < b.hi) & (filled < 1e5);
+        acc.ratio(std::string("missing_depth.range_") + b.name, fmt::format("missing depth, range {}", b.name),
+                  cv::countNonZero(missing & in_band), cv::countNonZero(in_band));
+        const cv::Mat valid_in_band = (depth_m >= b.lo) & (depth_m < b.hi) & ~missing;
+        acc.ratio(std::string("depth_histogram.") + b.name, fmt::format("share of valid depth, {}", b.name),
+                  cv::countNonZero(valid_in_band), cv::countNonZero(~missing));
+    }
+    acc.ratio("missing_depth.no_valid_within_8px", "missing depth, no valid depth within 8 px", cv::countNonZero(missing & (filled >= 1e5)),
+              total);
+    acc.mean("depth.max_m", "largest depth, m (mean over frames)", [&] {
+        double mx = 0;
+        cv::minMaxLoc(depth_m, nullptr, &mx);
+        return mx;
+    }());
+    // Plane fits in complete 8×8 patches: z = a·u + b·v + c on centred pixel coordinates.
+    double suu = 0;
+    for (int i = 0; i < kPatch; ++i) suu += (i - (kPatch - 1) / 2.0) * (i - (kPatch - 1) / 2.0);
+    suu *= kPatch;
+    for (int y = 0; y + kPatch <= H; y += kPatch)
+        for (int x = 0; x + kPatch <= W; x += kPatch) {
+            double sz = 0, suz = 0, svz = 0;
+            bool complete = true;
+            for (int j = 0; j < kPatch && complete; ++j)
+                for (int i = 0; i < kPatch; ++i) {
+                    const float z = depth_m.at<float>(y + j, x + i);
+                    if (z <= 0) {
+                        complete = false;
+                        break;
+                    }
+                    sz += z;
+                    suz += (i - (kPatch - 1) / 2.0) * z;
+                    svz += (j - (kPatch - 1) / 2.0) * z;
+                }
+            if (!complete) continue;
+            const double c = sz / (kPatch * kPatch), a = suz / suu, b = svz / suu;
+            double ss = 0;
+            for (int j = 0; j < kPatch; ++j)
+                for (int i = 0; i < kPatch; ++i) {
+                    const double r = depth_m.at<float>(y + j, x + i) - (c + a * (i - (kPatch - 1) / 2.0) + b * (j - (kPatch - 1) / 2.0));
+                    ss += r * r;
+                }
+            const double rms = std::sqrt(ss / (kPatch * kPatch - 3));
+            if (rms > 0.02 * c) continue;  // not planar: an edge or clutter
+            for (const Band& band : kRangeBands)
+                if (c >= band.lo && c < band.hi)
+                    acc.sample(std::string("depth_noise_mm.") + band.name, fmt::format("depth noise (plane fit RMS), {}, mm", band.name),
+                               rms * 1e3);
+        }
+}
+
+void measure_image(const cv::Mat& bgr, Accumulator& acc) {
+    cv::Mat grey8, grey;
+    cv::cvtColor(bgr, grey8, cv::COLOR_BGR2GRAY);
+    grey8.convertTo(grey, CV_32F);
+    // Immerkær (1996): the noise kernel cancels image structure up to second order.
+    const cv::Mat N = (cv::Mat_<float>(3, 3) << 1, -2, 1, -2, 4, -2, 1, -2, 1);
+    cv::Mat response;
+    cv::filter2D(grey, response, CV_32F, N);
+    const cv::Rect inner(1, 1, grey.cols - 2, grey.rows - 2);
+    const double sigma = std::sqrt(M_PI / 2.0) / (6.0 * inner.area()) * cv::sum(cv::abs(response(inner)))[0];
+    acc.mean("image.noise_sigma", "image noise σ (Immerkær), grey levels", sigma);
+    cv::Mat gx, gy, magnitude;
+    cv::Sobel(grey, gx, CV_32F, 1, 0);
+    cv::Sobel(grey, gy, CV_32F, 0, 1);
+    cv::magnitude(gx, gy, magnitude);
+    acc.ratio("image.gradient_density", "share of pixels with Sobel gradient > 40", cv::countNonZero(magnitude > 40), grey.total());
+    acc.mean("image.mean_gradient", "mean Sobel gradient magnitude", cv::mean(magnitude)[0]);
+    std::vector<cv::KeyPoint> corners;
+    cv::FAST(grey8, corners, 20, true);
+    acc.mean("image.fast_corners", "FAST corners per frame (threshold 20)", static_cast<double>(corners.size()));
+    cv::Mat laplacian;
+    cv::Laplacian(grey, laplacian, CV_32F);
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(laplacian, mean, stddev);
+    acc.mean("image.sharpness", "sharpness (variance of the Laplacian)", stddev[0] * stddev[0]);
+    // The same per unit of texture: how sharp the edges are, whatever their number.
+    const double g = cv::mean(magnitude)[0];
+    if (g > 0) acc.mean("image.edge_sharpness", "edge sharpness (Laplacian variance / mean gradient²)", stddev[0] * stddev[0] / (g * g));
+    acc.mean("image.mean_grey", "mean grey level", cv::mean(grey8)[0]);
+    acc.ratio("image.saturated", "share of saturated pixels (≥ 250)", cv::countNonZero(grey8 >= 250), grey.total());
+}
+
+}  // namespace
+
+FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale) {
+    const auto rgb = tum::parse_list(read_file(folder / "rgb.txt"), (folder / "rgb.txt").string());
+    const auto depth = tum::parse_list(read_file(folder / "depth.txt"), (folder / "depth.txt").string());
+    std::vector<double> rgb_stamps, depth_stamps;
+    for (const auto& e : rgb) rgb_stamps.push_back(e.stamp);
+    for (const auto& e : depth) depth_stamps.push_back(e.stamp);
+    const auto pairs = metrics::associate(rgb_stamps, depth_stamps, metrics::AssociationOptions{}).matches;
+    std::vector<std::size_t> chosen;
+    const std::size_t n = max_frames > 0 ? std::min(max_frames, pairs.size()) : pairs.size();
+    for (std::size_t k = 0; k < n; ++k) chosen.push_back(n == pairs.size() ? k : k * pairs.size() / n);
+    Accumulator acc;
+    for (std::size_t k : chosen) {
+        const auto& m = pairs[k];
+        const auto color_path = folder / rgb[m.first].path, depth_path = folder / depth[m.second].path;
+        const cv::Mat bgr = cv::imread(color_path.string(), cv::IMREAD_COLOR);
+        if (bgr.empty()) throw std::runtime_error(color_path.string() + ": cannot be decoded as an image");
+        const cv::Mat raw = cv::imread(depth_path.string(), cv::IMREAD_UNCHANGED);
+        if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(depth_path.string() + ": not a 16-bit single-channel PNG");
+        if (raw.size() != bgr.size())
+            throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(raw.cols) + "×" + std::to_string(raw.rows) +
+                                     ", colour " + std::to_string(bgr.cols) + "×" + std::to_string(bgr.rows) + " (not registered)");
+        cv::Mat depth_m, grey;
+        raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
+        cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+        measure_depth(depth_m, grey, acc);
+        measure_image(bgr, acc);
+        const double offset_ms = std::abs(rgb_stamps[m.first] - depth_stamps[m.second]) * 1e3;
+        acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);
+        acc.maximum("stamps.offset_max_ms", "colour–depth stamp offset, largest |Δt|, ms", offset_ms);
+    }
+    return {folder, chosen.size(), acc.result()};
+}
+
+}  // namespace vobench::synth

@@ -1,0 +1,45 @@
+// frame_statistics.hpp — `vobench synth stats DIR…`: the image and depth statistics that decide how
+// hard an RGB-D sequence is for visual odometry, measured the same way on any TUM-layout folder (real
+// or rendered), so a rendering can be calibrated against real frames (issue #15) and anyone can check.
+//
+// Per associated colour–depth pair (TUM's association, < 20 ms), averaged over the frames:
+//   missing depth: overall, in the 16-px image border, by brightness of the colour pixel, and by
+//     range (a hole takes the range of the nearest valid depth within 8 px; holes with none are "far");
+//   depth noise: the median residual RMS of plane fits z = a·u + b·v + c in 8×8 patches of complete
+//     depth that are planar (residual < 2 % of z), by range band;
+//   the depth histogram (share of valid pixels per 1 m band);
+//   image noise: Immerkær's estimator (1996, "Fast noise variance estimation") on the grey image,
+//     σ = √(π/2) / (6 (W−2)(H−2)) · Σ |I ∗ N|, N = [1 −2 1; −2 4 −2; 1 −2 1];
+//   gradient density: share of pixels whose Sobel gradient magnitude exceeds 40 (grey levels · 4);
+//   FAST corners per frame at threshold 20 with non-maximum suppression (put_vo's detector setting);
+//   sharpness: the variance of the Laplacian (motion blur and defocus lower it), and the same divided
+//     by the squared mean gradient (edge sharpness, independent of how much texture there is);
+//   brightness: mean grey level and the share of saturated pixels (≥ 250);
+//   colour–depth stamp offset: mean and largest |t_rgb − t_depth| of the pairs, milliseconds.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace vobench::synth {
+
+struct Statistic {
+    std::string key;    // stable identifier, e.g. "missing_depth.range_1_2m"
+    std::string label;  // for the table
+    double value = 0;   // mean over frames (NaN when no frame had a sample)
+};
+
+struct FolderStatistics {
+    std::filesystem::path folder;
+    std::size_t frames = 0;  // pairs measured
+    std::vector<Statistic> values;
+};
+
+// Reads rgb.txt, depth.txt (16-bit PNG, `depth_scale` units per metre) and the images. At most
+// `max_frames` pairs, evenly spaced (0: all). Throws std::runtime_error naming the file that cannot
+// be read; a frame whose images cannot be decoded is an error too (a statistic must not silently
+// skip data).
+FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames = 0, double depth_scale = 5000.0);
+
+}  // namespace vobench::synth

@@ -1,0 +1,177 @@
+// The depth half of the renderer: Kinect v1 (structured light) and Kinect v2 (time of flight), with
+// the ways their returns fail (sensor_model.hpp lists every parameter and its source).
+#include "synth/renderer.hpp"
+
+#include "synth/random_field.hpp"
+
+#include "depth_registration.hpp"  // plugins/common
+
+#include <tbb/parallel_for.h>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace vobench::synth {
+
+bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const {
+    // Lateral noise: the sampling position jitters by a fraction of a pixel.
+    const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
+    Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
+    if (sensor_.effects.depth_noise) {
+        const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
+        dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
+        dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
+        dir_cam.normalize();
+    }
+    const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
+    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit)) return false;
+    out.z = out.hit.t * dir_cam.z();
+    out.incidence = std::acos(std::min(1.0, std::abs(out.hit.normal.dot(dir))));
+    return true;
+}
+
+bool Renderer::return_lost(uint64_t frame, uint64_t pixel, const DepthRay& ray) const {
+    const Effects& fx = sensor_.effects;
+    const Material& m = scene_.materials[static_cast<std::size_t>(ray.hit.material)];
+    double p = 0;
+    if (fx.dark_dropout) {
+        if (m.emission > 0) return true;  // glass: the IR passes through to what lies beyond range
+        const Eigen::Vector3f a = albedo(m, ray.hit.u, ray.hit.v, 0.005);
+        const double luminance = 0.2126 * a.x() + 0.7152 * a.y() + 0.0722 * a.z();
+        if (luminance < sensor_.dark_albedo) p = sensor_.dark_dropout_max * (1.0 - luminance / sensor_.dark_albedo);
+        p = 1.0 - (1.0 - p) * (1.0 - sensor_.gloss_dropout * m.gloss);
+    }
+    if (fx.far_dropout && sensor_.principle == DepthPrinciple::StructuredLight && ray.z > sensor_.far_dropout_start_m)
+        p = 1.0 -
+            (1.0 - p) * (1.0 - std::min(1.0, (ray.z - sensor_.far_dropout_start_m) / (sensor_.max_range_m - sensor_.far_dropout_start_m)));
+    if (p <= 0) return false;
+    // Blobs fixed on the surface (value noise mapped to about uniform in [0, 1]), their edges
+    // flickering a little from frame to frame.
+    const double field =
+        0.5 + 0.8 * lattice_noise(ray.hit.u / sensor_.dropout_blob_m, ray.hit.v / sensor_.dropout_blob_m, m.seed ^ 0xd1b54a32d192ed03ull);
+    const double flicker = 0.15 * (uniform(hash(seed_, kLostReturn, frame, pixel)) - 0.5);
+    return std::clamp(field, 0.0, 1.0) + flicker < p;
+}
+
+void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const {
+    // Kinect v1: depth on a grid registered to the colour camera, from disparity against the
+    // projector pattern (Khoshelham & Elberink 2012): z = f·b/d, d quantised to 1/8 px with noise.
+    const Effects& fx = sensor_.effects;
+    const int W = depth_rays_.width, H = depth_rays_.height;
+    // Registered: the depth grid is the colour camera's. The IR camera's rolling shutter moves it
+    // while the rows are read (the colour camera's motion at the depth stamp: they are ~10 ms apart).
+    const Eigen::Isometry3d next = f.depth_pose * (f.color_pose.inverse() * f.next_pose);
+    const auto rows = row_poses(f.depth_pose, next, f.blur_interval_s, fx.rolling_shutter ? sensor_.depth_readout_s : 0.0, H);
+    const double fb = sensor_.ir_focal_px * sensor_.baseline_m;
+    // The registered image's unmeasured border, in this grid's pixels.
+    const double px = W / 640.0;
+    const int right = W - static_cast<int>(std::lround(sensor_.border_right_px * px));
+    const int top = static_cast<int>(std::lround(sensor_.border_top_px * px));
+    const int bottom = H - static_cast<int>(std::lround(sensor_.border_bottom_px * px));
+    cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
+    out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
+    tbb::parallel_for(0, H, [&](int v) {
+        for (int u = 0; u < W; ++u) {
+            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
+            DepthRay ray;
+            const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
+            if (!cast_depth_ray(frame, depth_pose, u, v, ray)) continue;
+            const double z = ray.z;
+            truth.at<float>(v, u) = static_cast<float>(z);
+            if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
+            if (fx.depth_border && (u >= right || v < top || v >= bottom || u < sensor_.border_left_px_m * px / z)) continue;
+            if (fx.glancing_dropout && ray.incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
+            if (return_lost(frame, pixel, ray)) continue;
+            const Hit& hit = ray.hit;
+            // The projector's shadow: a point the pattern cannot reach has no disparity.
+            if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) continue;
+            if (!fx.depth_noise) {
+                out.depth_native.at<float>(v, u) = static_cast<float>(z);
+                continue;
+            }
+            const double d = fb / z + sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
+            const double dq = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
+            if (dq <= 0) continue;
+            out.depth_native.at<float>(v, u) = static_cast<float>(fb / dq);
+        }
+    });
+    if (fx.edge_dropout) {
+        // The correlation window straddling a depth step matches neither side.
+        const cv::Mat measured = out.depth_native.clone();
+        tbb::parallel_for(1, H - 1, [&](int v) {
+            for (int u = 1; u < W - 1; ++u) {
+                const float z = truth.at<float>(v, u);
+                if (measured.at<float>(v, u) <= 0) continue;
+                bool step = false;
+                for (int k = 0; k < 4 && !step; ++k) {
+                    const float n = truth.at<float>(v + (k == 2) - (k == 3), u + (k == 0) - (k == 1));
+                    step = n <= 0 || std::abs(n - z) > 0.05f * z;
+                }
+                if (step && uniform(hash(seed_, kEdgeDropout, frame, static_cast<uint64_t>(v) * W + u)) < sensor_.edge_dropout_probability)
+                    out.depth_native.at<float>(v, u) = 0;
+            }
+        });
+    }
+    // PUTK²'s 320×240 depth is rescaled to the 640×480 colour image as in the paper (nearest: no
+    // invented depths); a full-resolution grid is the colour image already.
+    if (out.depth_native.size() == cv::Size(sensor_.color.width, sensor_.color.height))
+        out.depth = out.depth_native.clone();
+    else
+        cv::resize(out.depth_native, out.depth, cv::Size(sensor_.color.width, sensor_.color.height), 0, 0, cv::INTER_NEAREST);
+}
+
+rgbd::Intrinsics intrinsics_of(const PinholeCamera& c) { return {c.fx, c.fy, c.cx, c.cy, c.distortion_count, c.distortion}; }
+
+void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const {
+    // Kinect v2: its own 512×424 camera beside the colour camera; axial noise after Fankhauser et al.
+    // (2015); flying pixels mixing fore- and background at discontinuities; isolated dropouts.
+    const Effects& fx = sensor_.effects;
+    const int W = depth_rays_.width, H = depth_rays_.height;
+    // A global shutter: one pose for the whole image.
+    const Eigen::Isometry3d depth_pose = f.depth_pose * sensor_.depth_in_color;
+    cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1), noisy = cv::Mat::zeros(H, W, CV_32FC1);
+    tbb::parallel_for(0, H, [&](int v) {
+        for (int u = 0; u < W; ++u) {
+            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
+            DepthRay ray;
+            if (!cast_depth_ray(frame, depth_pose, u, v, ray)) continue;
+            const double z = ray.z, incidence = ray.incidence;
+            truth.at<float>(v, u) = static_cast<float>(z);
+            if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
+            if (fx.glancing_dropout && incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
+            if (fx.dark_dropout && uniform(hash(seed_, kDropout, frame, pixel)) < sensor_.dropout_probability) continue;
+            if (return_lost(frame, pixel, ray)) continue;
+            const double noise = fx.depth_noise ? kinect2_sigma_z(z, incidence) * gaussian(hash(seed_, kTofNoise, frame, pixel)) : 0.0;
+            noisy.at<float>(v, u) = static_cast<float>(z + noise);
+        }
+    });
+    // Flying pixels: a pixel whose footprint straddles a depth step returns a mixture of both depths.
+    out.depth_native = noisy.clone();
+    if (fx.flying_pixels) {
+        tbb::parallel_for(0, H, [&](int v) {
+            for (int u = 0; u < W; ++u) {
+                const float z = truth.at<float>(v, u);
+                if (noisy.at<float>(v, u) <= 0) continue;
+                float other = z;
+                const int du[4] = {1, -1, 0, 0}, dv[4] = {0, 0, 1, -1};
+                for (int k = 0; k < 4; ++k) {
+                    const int x = u + du[k], y = v + dv[k];
+                    if (x < 0 || y < 0 || x >= W || y >= H) continue;
+                    const float n = truth.at<float>(y, x);
+                    if (n > 0 && std::abs(n - z) > 0.05f && std::abs(n - z) > std::abs(other - z)) other = n;
+                }
+                if (other == z) continue;
+                const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
+                if (uniform(hash(seed_, kFlying, frame, pixel)) >= sensor_.flying_pixel_probability) continue;
+                const double alpha = 0.15 + 0.7 * uniform(hash(seed_, kFlyingMix, frame, pixel));
+                out.depth_native.at<float>(v, u) = static_cast<float>(noisy.at<float>(v, u) + alpha * (other - z));
+            }
+        });
+    }
+    // To the 1920×1080 colour camera, z-buffered splats (see plugins/common/depth_registration.hpp).
+    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color), sensor_.depth_in_color,
+                                     cv::Size(sensor_.color.width, sensor_.color.height));
+}
+
+}  // namespace vobench::synth

@@ -1,0 +1,78 @@
+#!/usr/bin/env python3
+"""Compares every algorithm's RPE on a real sequence and on its rendering (issue #15).
+
+Reads a finished sweep of configs/sim_to_real.yaml (datasets `real` and `rendered`), evaluates each
+cell's trajectory with `vobench eval --protocol tum-scripts` at Δ = 4 frames and Δ = 1 s against the
+cell's own ground truth, prints the table of rendered/real ratios and checks the issue's criteria:
+every ratio (translation and rotation, both Δ) inside [lo, hi], and the same order of the algorithms
+by rotational RPE (Δ = 1 s) on both. Exit 0 when they hold, 1 when not, 2 on unusable input.
+
+Usage: sim_to_real_compare.py VOBENCH SWEEP_DIR [--lo 0.67] [--hi 1.5] [--report-only]
+"""
+import argparse
+import json
+import pathlib
+import statistics
+import subprocess
+import sys
+
+
+def evaluate(vobench, gt, est, delta, unit):
+    out = subprocess.run([vobench, "eval", "--gt", gt, "--est", est, "--protocol", "tum-scripts", "--metric", "rpe", "--delta",
+                          str(delta), "--delta-unit", unit, "--json"], capture_output=True, text=True)
+    if out.returncode != 0:
+        raise RuntimeError(f"vobench eval {est}: {out.stderr.strip()}")
+    rpe = json.loads(out.stdout)["rpe"]
+    return rpe["trans"]["rmse"], rpe["rot_deg"]["rmse"]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("vobench")
+    ap.add_argument("sweep")
+    ap.add_argument("--lo", type=float, default=0.67)
+    ap.add_argument("--hi", type=float, default=1.5)
+    ap.add_argument("--report-only", action="store_true")
+    a = ap.parse_args()
+    values = {}  # (algorithm, dataset) -> list of (t4, r4, t1s, r1s)
+    for cell_file in sorted(pathlib.Path(a.sweep, "runs").glob("*/cell.json")):
+        run = cell_file.parent
+        cell = json.loads(cell_file.read_text())
+        result = json.loads((run / "result.json").read_text()) if (run / "result.json").exists() else {}
+        if result.get("status") != "ok" or not (run / "trajectory.txt").exists():
+            print(f"{cell['algorithm']} on {cell['dataset']}: cell did not succeed ({result.get('status', 'no result')})", file=sys.stderr)
+            return 2
+        gt, est = str(run / "groundtruth.txt"), str(run / "trajectory.txt")
+        row = evaluate(a.vobench, gt, est, 4, "f") + evaluate(a.vobench, gt, est, 1, "s")
+        values.setdefault((cell["algorithm"], cell["dataset"]), []).append(row)
+    algorithms = sorted({k[0] for k in values})
+    if not algorithms or any((alg, d) not in values for alg in algorithms for d in ("real", "rendered")):
+        print("the sweep must hold every algorithm on both datasets `real` and `rendered`", file=sys.stderr)
+        return 2
+    mean = {k: [statistics.mean(col) for col in zip(*rows)] for k, rows in values.items()}
+    names = ["RPE 4 f t", "RPE 4 f r", "RPE 1 s t", "RPE 1 s r"]
+    print("| algorithm | " + " | ".join(f"{n} real / rendered (ratio)" for n in names) + " |")
+    print("|---|" + "---:|" * len(names))
+    failures = []
+    for alg in algorithms:
+        real, rend = mean[(alg, "real")], mean[(alg, "rendered")]
+        cells = []
+        for i, n in enumerate(names):
+            ratio = rend[i] / real[i] if real[i] > 0 else float("inf")
+            unit = "°" if n.endswith("r") else " m"
+            cells.append(f"{real[i]:.4f}{unit} / {rend[i]:.4f}{unit} ({ratio:.2f})")
+            if not a.lo <= ratio <= a.hi:
+                failures.append(f"{alg}: {n} ratio {ratio:.2f} outside [{a.lo}, {a.hi}]")
+        print(f"| {alg} | " + " | ".join(cells) + " |")
+    order = {d: sorted(algorithms, key=lambda alg: mean[(alg, d)][3]) for d in ("real", "rendered")}
+    print(f"\norder by rotational RPE (1 s), real:     {' < '.join(order['real'])}")
+    print(f"order by rotational RPE (1 s), rendered: {' < '.join(order['rendered'])}")
+    if order["real"] != order["rendered"]:
+        failures.append("the algorithms come in a different order by rotational RPE")
+    for f in failures:
+        print("FAIL: " + f)
+    return 0 if a.report_only or not failures else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
