@@ -10,6 +10,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -185,6 +186,40 @@ void measure_image(const cv::Mat& bgr, Accumulator& acc) {
     acc.ratio("image.saturated", "share of saturated pixels (≥ 250)", cv::countNonZero(grey8 >= 250), grey.total());
 }
 
+// How far depth edges sit from colour edges: the shift (dx, dy) of the depth-step map that best
+// overlaps the colour-edge map, pooled over frames (registration error shows as a shift ≠ 0).
+constexpr int kMaxShift = 4;
+using ShiftScores = std::array<std::array<double, 2 * kMaxShift + 1>, 2 * kMaxShift + 1>;
+
+void score_edge_shifts(const cv::Mat& depth_m, const cv::Mat& grey, ShiftScores& scores) {
+    const int W = depth_m.cols, H = depth_m.rows;
+    cv::Mat gx, gy, magnitude;
+    cv::Sobel(grey, gx, CV_32F, 1, 0);
+    cv::Sobel(grey, gy, CV_32F, 0, 1);
+    cv::magnitude(gx, gy, magnitude);
+    // Depth steps, centred: |z(u+1) − z(u−1)| or the same vertically over 10 % of z, both sides valid.
+    cv::Mat steps = cv::Mat::zeros(H, W, CV_8U);
+    for (int v = 1; v < H - 1; ++v)
+        for (int u = 1; u < W - 1; ++u) {
+            const float z = depth_m.at<float>(v, u), l = depth_m.at<float>(v, u - 1), r = depth_m.at<float>(v, u + 1),
+                        t = depth_m.at<float>(v - 1, u), b = depth_m.at<float>(v + 1, u);
+            if (z <= 0 || l <= 0 || r <= 0 || t <= 0 || b <= 0) continue;
+            if (std::abs(r - l) > 0.1f * z || std::abs(b - t) > 0.1f * z) steps.at<uint8_t>(v, u) = 1;
+        }
+    const int m = kMaxShift + 16;
+    for (int dy = -kMaxShift; dy <= kMaxShift; ++dy)
+        for (int dx = -kMaxShift; dx <= kMaxShift; ++dx) {
+            double hits = 0, total = 0;
+            for (int v = m; v < H - m; ++v)
+                for (int u = m; u < W - m; ++u) {
+                    if (!steps.at<uint8_t>(v, u)) continue;
+                    ++total;
+                    hits += magnitude.at<float>(v - dy, u - dx) > 60;
+                }
+            if (total > 0) scores[static_cast<std::size_t>(dy + kMaxShift)][static_cast<std::size_t>(dx + kMaxShift)] += hits / total;
+        }
+}
+
 }  // namespace
 
 FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale) {
@@ -198,6 +233,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     const std::size_t n = max_frames > 0 ? std::min(max_frames, pairs.size()) : pairs.size();
     for (std::size_t k = 0; k < n; ++k) chosen.push_back(n == pairs.size() ? k : k * pairs.size() / n);
     Accumulator acc;
+    ShiftScores shifts{};
     for (std::size_t k : chosen) {
         const auto& m = pairs[k];
         const auto color_path = folder / rgb[m.first].path, depth_path = folder / depth[m.second].path;
@@ -212,10 +248,24 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
         cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
         measure_depth(depth_m, grey, acc);
+        score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
         const double offset_ms = std::abs(rgb_stamps[m.first] - depth_stamps[m.second]) * 1e3;
         acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);
         acc.maximum("stamps.offset_max_ms", "colour–depth stamp offset, largest |Δt|, ms", offset_ms);
+    }
+    // The depth image's content sits (dx, dy) px from the colour image's: colour edge at depth edge − shift.
+    int best_x = 0, best_y = 0;
+    for (int dy = -kMaxShift; dy <= kMaxShift; ++dy)
+        for (int dx = -kMaxShift; dx <= kMaxShift; ++dx)
+            if (shifts[static_cast<std::size_t>(dy + kMaxShift)][static_cast<std::size_t>(dx + kMaxShift)] >
+                shifts[static_cast<std::size_t>(best_y + kMaxShift)][static_cast<std::size_t>(best_x + kMaxShift)]) {
+                best_x = dx;
+                best_y = dy;
+            }
+    if (!chosen.empty()) {
+        acc.mean("registration.edge_shift_x_px", "depth edges right of colour edges, px (best overlap)", best_x);
+        acc.mean("registration.edge_shift_y_px", "depth edges below colour edges, px (best overlap)", best_y);
     }
     return {folder, chosen.size(), acc.result()};
 }

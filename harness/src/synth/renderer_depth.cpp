@@ -18,12 +18,18 @@ bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pos
     // Lateral noise: the sampling position jitters by a fraction of a pixel.
     const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
     Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
+    if (sensor_.effects.registration_error && sensor_.principle == DepthPrinciple::StructuredLight) {
+        // The registered depth pixel (u, v) holds what the colour pixel (u − dx, v − dy) sees.
+        const double px = depth_rays_.width / 640.0;
+        dir_cam.x() -= sensor_.registration_shift_px.x() * px / sensor_.depth.fx * dir_cam.z();
+        dir_cam.y() -= sensor_.registration_shift_px.y() * px / sensor_.depth.fy * dir_cam.z();
+    }
     if (sensor_.effects.depth_noise) {
         const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
         dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
         dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
-        dir_cam.normalize();
     }
+    dir_cam.normalize();
     const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
     if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit)) return false;
     out.z = out.hit.t * dir_cam.z();

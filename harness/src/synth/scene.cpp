@@ -134,6 +134,15 @@ Eigen::Vector3f colour(Random& r, float lo, float hi) {
     return {static_cast<float>(r.uniform(lo, hi)), static_cast<float>(r.uniform(lo, hi)), static_cast<float>(r.uniform(lo, hi))};
 }
 
+// The colour of a manufactured object: a hue times a luminance drawn log-uniformly over 0.03–0.9, so
+// that black, mid and white things are equally common, as real surfaces' reflectances spread over
+// decades (Attewell & Baddeley 2007) — not all mid-grey pastels.
+Eigen::Vector3f object_colour(Random& r) {
+    Eigen::Vector3f hue = colour(r, 0.15f, 1.0f);
+    hue /= hue.maxCoeff();
+    return hue * static_cast<float>(std::exp(r.uniform(std::log(0.03), std::log(0.9))));
+}
+
 // Distance in the floor plane from (x, y) to the box's footprint.
 double footprint_distance(const Box& b, double x, double y) {
     const double dx = std::max({b.min.x() - x, 0.0, x - b.max.x()});
@@ -221,15 +230,15 @@ void furnish_desk(const Box& desk, double top, Random& r, uint64_t& next_seed, c
     for (int k = 0; k < books; ++k) {
         const double t = r.uniform(0.02, 0.05);
         place(book_a + r.uniform(0, 0.03), book_a + r.uniform(0.17, 0.26), book_b, book_b + r.uniform(0.22, 0.3), stack + t,
-              mat(TextureStyle::Photo, colour(r, 0.3f, 0.9f), colour(r, 0.1f, 0.5f)));
+              mat(TextureStyle::Photo, object_colour(r), object_colour(r)));
         stack += t;
     }
     const double mug_a = spot(0.085, len), mug_b = spot(0.085, depth);
-    place(mug_a, mug_a + 0.085, mug_b, mug_b + 0.085, 0.1, mat(TextureStyle::Paint, colour(r, 0.2f, 0.95f), colour(r, 0.2f, 0.6f), 0.4f));
+    place(mug_a, mug_a + 0.085, mug_b, mug_b + 0.085, 0.1, mat(TextureStyle::Paint, object_colour(r), object_colour(r), 0.4f));
     if (r.uniform(0, 1) < 0.6) {
         const double w = r.uniform(0.12, 0.3), d = r.uniform(0.1, 0.25);
         const double a = spot(w, len), b = spot(d, depth);
-        place(a, a + w, b, b + d, r.uniform(0.05, 0.2), mat(TextureStyle::Photo, colour(r, 0.4f, 0.9f), colour(r, 0.1f, 0.4f)));
+        place(a, a + w, b, b + d, r.uniform(0.05, 0.2), mat(TextureStyle::Photo, object_colour(r), object_colour(r)));
     }
     // The small things that cover a used desk (pens, phones, staplers, cases, tins, bottles, notes):
     // boxes of 2–15 cm in strong colours and prints, a dozen or more; they may touch and stack.
@@ -239,7 +248,7 @@ void furnish_desk(const Box& desk, double top, Random& r, uint64_t& next_seed, c
         const double a = spot(w, len), b = spot(d, depth);
         const double pick = r.uniform(0, 1);
         const TextureStyle style = pick < 0.45 ? TextureStyle::Photo : pick < 0.7 ? TextureStyle::Poster : TextureStyle::Paint;
-        place(a, a + w, b, b + d, h, mat(style, colour(r, 0.05f, 0.95f), colour(r, 0.02f, 0.6f), r.uniform(0, 1) < 0.3 ? 0.4f : 0.0f));
+        place(a, a + w, b, b + d, h, mat(style, object_colour(r), object_colour(r), r.uniform(0, 1) < 0.3 ? 0.4f : 0.0f));
     }
     for (int k = 0; k < 2; ++k) {
         const double ca = r.uniform(0.05, std::max(0.06, len - 0.05));

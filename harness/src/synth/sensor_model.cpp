@@ -94,15 +94,23 @@ namespace {
 // The switches in one table: name, member.
 using EffectMember = bool Effects::*;
 const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
-    static const std::vector<std::pair<std::string, EffectMember>> table = {
-        {"motion_blur", &Effects::motion_blur},           {"optics_blur", &Effects::optics_blur},
-        {"image_noise", &Effects::image_noise},           {"vignetting", &Effects::vignetting},
-        {"auto_exposure", &Effects::auto_exposure},       {"highlights", &Effects::highlights},
-        {"rolling_shutter", &Effects::rolling_shutter},   {"depth_noise", &Effects::depth_noise},
-        {"projector_shadow", &Effects::projector_shadow}, {"depth_border", &Effects::depth_border},
-        {"dark_dropout", &Effects::dark_dropout},         {"glancing_dropout", &Effects::glancing_dropout},
-        {"far_dropout", &Effects::far_dropout},           {"edge_dropout", &Effects::edge_dropout},
-        {"flying_pixels", &Effects::flying_pixels},       {"stamp_offsets", &Effects::stamp_offsets}};
+    static const std::vector<std::pair<std::string, EffectMember>> table = {{"motion_blur", &Effects::motion_blur},
+                                                                            {"optics_blur", &Effects::optics_blur},
+                                                                            {"image_noise", &Effects::image_noise},
+                                                                            {"vignetting", &Effects::vignetting},
+                                                                            {"auto_exposure", &Effects::auto_exposure},
+                                                                            {"highlights", &Effects::highlights},
+                                                                            {"rolling_shutter", &Effects::rolling_shutter},
+                                                                            {"depth_noise", &Effects::depth_noise},
+                                                                            {"projector_shadow", &Effects::projector_shadow},
+                                                                            {"depth_border", &Effects::depth_border},
+                                                                            {"dark_dropout", &Effects::dark_dropout},
+                                                                            {"glancing_dropout", &Effects::glancing_dropout},
+                                                                            {"far_dropout", &Effects::far_dropout},
+                                                                            {"edge_dropout", &Effects::edge_dropout},
+                                                                            {"registration_error", &Effects::registration_error},
+                                                                            {"flying_pixels", &Effects::flying_pixels},
+                                                                            {"stamp_offsets", &Effects::stamp_offsets}};
     return table;
 }
 

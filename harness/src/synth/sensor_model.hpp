@@ -35,15 +35,16 @@ struct Effects {
     bool highlights = true;       // specular reflection on glossy materials
     bool rolling_shutter = true;  // rows exposed one after another while the camera moves
     // Depth.
-    bool depth_noise = true;       // the sensor's axial and lateral noise (and Kinect v1's quantisation)
-    bool projector_shadow = true;  // Kinect v1: no depth where the projector's pattern cannot reach
-    bool depth_border = true;      // Kinect v1: the registered depth image's unmeasured border
-    bool dark_dropout = true;      // lost returns on dark, glossy and glass surfaces
-    bool glancing_dropout = true;  // no return beyond the glancing-angle limit
-    bool far_dropout = true;       // Kinect v1: returns thin out with range before the limit
-    bool edge_dropout = true;      // Kinect v1: the correlation window fails across depth steps
-    bool flying_pixels = true;     // Kinect v2: mixed depths at discontinuities
-    bool stamp_offsets = false;    // built-in trajectories: depth stamps off the colour stamps
+    bool depth_noise = true;         // the sensor's axial and lateral noise (and Kinect v1's quantisation)
+    bool projector_shadow = true;    // Kinect v1: no depth where the projector's pattern cannot reach
+    bool depth_border = true;        // Kinect v1: the registered depth image's unmeasured border
+    bool dark_dropout = true;        // lost returns on dark, glossy and glass surfaces
+    bool glancing_dropout = true;    // no return beyond the glancing-angle limit
+    bool far_dropout = true;         // Kinect v1: returns thin out with range before the limit
+    bool edge_dropout = true;        // Kinect v1: the correlation window fails across depth steps
+    bool flying_pixels = true;       // Kinect v2: mixed depths at discontinuities
+    bool registration_error = true;  // Kinect v1: depth registered a little off the colour image
+    bool stamp_offsets = false;      // built-in trajectories: depth stamps off the colour stamps
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
@@ -73,20 +74,23 @@ struct SensorModel {
     double dropout_probability = 0.003;     // isolated invalid pixels
     // Failures of the returns (both sensors; sources in sensor_model.cpp).
     double dark_albedo = 0.08;              // returns are lost in blobs on surfaces darker than this (linear albedo)
-    double dark_dropout_max = 0.55;         // ... with this probability on black
-    double gloss_dropout = 0.4;             // share of a glossy surface's returns lost (× gloss)
+    double dark_dropout_max = 0.3;          // ... with this probability on black
+    double gloss_dropout = 0.25;            // share of a glossy surface's returns lost (× gloss)
     double dropout_blob_m = 0.02;           // size of the lost-return blobs on the surface
     double far_dropout_start_m = 3.5;       // Kinect v1: dropout rises linearly from here to max_range_m
     double edge_dropout_probability = 0.5;  // Kinect v1: at a depth step over 5 % of the range
     // Kinect v1's registered depth border in pixels of a 640×480 colour image (scaled with its width):
     // left f·b_IR/z (IR–colour parallax), right, top and bottom fixed.
+    // Kinect v1's registration error: the depth image's content lies this far right and down of the
+    // colour image's, pixels of a 640-wide image.
+    Eigen::Vector2d registration_shift_px{1.5, 2.0};
     double border_left_px_m = 13.0, border_right_px = 40, border_top_px = 34, border_bottom_px = 3;
     // Colour camera exposure and noise.
     double exposure_s = 0.015;
     double color_noise_dn = 2.0;            // σ of additive noise, 8-bit digital numbers
     double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
-    double exposure_target = 0.3;           // auto-exposure: linear mean luminance aimed at (sRGB ≈ 149)
+    double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)
     double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene
     double gain = 1.0;
     double color_readout_s = 0.0, depth_readout_s = 0.0;  // rolling shutter: first to last row
