@@ -1,5 +1,6 @@
 #include "synth/scene.hpp"
 
+#include "synth/desk_clutter.hpp"
 #include "synth/random_field.hpp"
 #include "synth/ray_index.hpp"
 
@@ -110,53 +111,11 @@ Eigen::Vector3f Scene::shade(const Hit& hit, const Eigen::Vector3d& view_dir, do
 
 namespace {
 
-class Random {
-public:
-    explicit Random(uint64_t seed) : state_(seed) {}
-    double uniform(double lo, double hi) { return lo + (hi - lo) * synth::uniform(mix64(++state_ * 0x2545f4914f6cdd1dull)); }
-    int pick(int n) { return std::min(n - 1, static_cast<int>(uniform(0, n))); }
-
-private:
-    uint64_t state_;
-};
-
-Material material(Random& r, TextureStyle style, Eigen::Vector3f base, Eigen::Vector3f accent, uint64_t seed) {
-    Material m;
-    m.style = style;
-    m.base = base;
-    m.accent = accent;
-    m.scale = static_cast<float>(r.uniform(0.8, 1.25));
-    m.seed = seed;
-    return m;
-}
-
-Eigen::Vector3f colour(Random& r, float lo, float hi) {
-    return {static_cast<float>(r.uniform(lo, hi)), static_cast<float>(r.uniform(lo, hi)), static_cast<float>(r.uniform(lo, hi))};
-}
-
-// The colour of a manufactured object: a hue times a luminance drawn log-uniformly over 0.03–0.9, so
-// that black, mid and white things are equally common, as real surfaces' reflectances spread over
-// decades (Attewell & Baddeley 2007) — not all mid-grey pastels.
-Eigen::Vector3f object_colour(Random& r) {
-    Eigen::Vector3f hue = colour(r, 0.15f, 1.0f);
-    hue /= hue.maxCoeff();
-    return hue * static_cast<float>(std::exp(r.uniform(std::log(0.03), std::log(0.9))));
-}
-
 // Distance in the floor plane from (x, y) to the box's footprint.
 double footprint_distance(const Box& b, double x, double y) {
     const double dx = std::max({b.min.x() - x, 0.0, x - b.max.x()});
     const double dy = std::max({b.min.y() - y, 0.0, y - b.max.y()});
     return std::hypot(dx, dy);
-}
-
-// Office desks: white or grey laminate (most of TUM's) or wood.
-Material desk_material(Random& r, uint64_t seed) {
-    if (r.uniform(0, 1) < 0.6) {
-        const float g = static_cast<float>(r.uniform(0.7, 0.88));
-        return material(r, TextureStyle::Paint, Eigen::Vector3f(g, g, g * 0.97f), Eigen::Vector3f(0.5f, 0.5f, 0.5f), seed);
-    }
-    return material(r, TextureStyle::Wood, colour(r, 0.45f, 0.8f), colour(r, 0.2f, 0.4f), seed);
 }
 
 bool overlaps_any(const Scene& s, const Box& b) {
@@ -167,93 +126,6 @@ bool overlaps_any(const Scene& s, const Box& b) {
             return true;
     }
     return false;
-}
-
-// What stands on a real office desk (z down: `top` is the desk's upper surface): a monitor at the back,
-// keyboard and mouse before it, papers, books, a mug, a box, cables. Sizes of common objects; each
-// one a box.
-template <typename Add>
-void furnish_desk(const Box& desk, double top, Random& r, uint64_t& next_seed, const Add& add) {
-    const bool long_x = desk.max.x() - desk.min.x() >= desk.max.y() - desk.min.y();
-    // Desk coordinates: a along the long side, b across it from the front edge.
-    const double len = long_x ? desk.max.x() - desk.min.x() : desk.max.y() - desk.min.y();
-    const double depth = long_x ? desk.max.y() - desk.min.y() : desk.max.x() - desk.min.x();
-    const bool back_at_max = r.uniform(0, 1) < 0.5;
-    auto place = [&](double a0, double a1, double b0, double b1, double h, const Material& m) {
-        const double lo_b = back_at_max ? b0 : depth - b1, hi_b = back_at_max ? b1 : depth - b0;
-        Eigen::Vector3d mn, mx;
-        if (long_x) {
-            mn = {desk.min.x() + a0, desk.min.y() + lo_b, top - h};
-            mx = {desk.min.x() + a1, desk.min.y() + hi_b, top};
-        } else {
-            mn = {desk.min.x() + lo_b, desk.min.y() + a0, top - h};
-            mx = {desk.min.x() + hi_b, desk.min.y() + a1, top};
-        }
-        add(mn, mx, m);
-    };
-    auto mat = [&](TextureStyle style, Eigen::Vector3f base, Eigen::Vector3f accent, float gloss = 0.0f) {
-        Material m = material(r, style, base, accent, ++next_seed);
-        m.gloss = gloss;
-        return m;
-    };
-    auto spot = [&](double size, double room) { return r.uniform(0.0, std::max(0.01, room - size)); };
-    const Eigen::Vector3f black(0.03f, 0.03f, 0.035f), white(0.85f, 0.85f, 0.83f);
-    // Monitor: foot, neck and a screen standing on them, near the back edge.
-    const double mon_w = r.uniform(0.45, 0.6), mon_h = r.uniform(0.3, 0.38);
-    const double mon_a = r.uniform(0.1, std::max(0.11, len - mon_w - 0.1)), mon_b = depth - r.uniform(0.12, 0.2);
-    const double mid = mon_a + mon_w / 2;
-    place(mid - 0.1, mid + 0.1, mon_b - 0.1, mon_b + 0.08, 0.015, mat(TextureStyle::Paint, black * 3, black));
-    place(mid - 0.03, mid + 0.03, mon_b + 0.03, mon_b + 0.06, 0.06, mat(TextureStyle::Paint, black * 3, black));
-    place(mon_a, mon_a + mon_w, mon_b - 0.01, mon_b + 0.02, 0.06 + mon_h, mat(TextureStyle::Screen, black, black, 0.6f));
-    // Keyboard and mouse in front of it.
-    const double kb_a = std::clamp(mid - 0.23 + r.uniform(-0.1, 0.1), 0.02, std::max(0.02, len - 0.48));
-    const double kb_b = r.uniform(0.08, std::max(0.09, mon_b - 0.35));
-    const bool white_keys = r.uniform(0, 1) < 0.4;
-    place(kb_a, kb_a + 0.46, kb_b, kb_b + 0.16, 0.025,
-          mat(TextureStyle::Keys, white_keys ? white : Eigen::Vector3f(0.08f, 0.08f, 0.09f),
-              white_keys ? Eigen::Vector3f(0.2f, 0.2f, 0.2f) : Eigen::Vector3f(0.7f, 0.7f, 0.7f)));
-    if (kb_a + 0.6 < len)
-        place(kb_a + 0.52, kb_a + 0.58, kb_b + 0.02, kb_b + 0.12, 0.03, mat(TextureStyle::Paint, colour(r, 0.05f, 0.8f), black, 0.3f));
-    // Papers: a few sheets in a spread, each a millimetre above the last.
-    const int sheets = 2 + r.pick(6);
-    for (int k = 0; k < sheets; ++k) {
-        const bool portrait = r.uniform(0, 1) < 0.5;
-        const double w = portrait ? 0.21 : 0.297, d = portrait ? 0.297 : 0.21;
-        const double a = spot(w, len), b = spot(d, depth * 0.7);
-        place(a, a + w, b, b + d, 0.001 * (k + 1),
-              mat(TextureStyle::Pages, Eigen::Vector3f(0.92f, 0.92f, 0.9f), Eigen::Vector3f(0.85f, 0.85f, 0.83f)));
-    }
-    // A stack of books or binders, a mug, a small box, cables to the monitor.
-    const int books = r.pick(4);
-    double stack = 0;
-    const double book_a = spot(0.3, len), book_b = spot(0.3, depth);
-    for (int k = 0; k < books; ++k) {
-        const double t = r.uniform(0.02, 0.05);
-        place(book_a + r.uniform(0, 0.03), book_a + r.uniform(0.17, 0.26), book_b, book_b + r.uniform(0.22, 0.3), stack + t,
-              mat(TextureStyle::Photo, object_colour(r), object_colour(r)));
-        stack += t;
-    }
-    const double mug_a = spot(0.085, len), mug_b = spot(0.085, depth);
-    place(mug_a, mug_a + 0.085, mug_b, mug_b + 0.085, 0.1, mat(TextureStyle::Paint, object_colour(r), object_colour(r), 0.4f));
-    if (r.uniform(0, 1) < 0.6) {
-        const double w = r.uniform(0.12, 0.3), d = r.uniform(0.1, 0.25);
-        const double a = spot(w, len), b = spot(d, depth);
-        place(a, a + w, b, b + d, r.uniform(0.05, 0.2), mat(TextureStyle::Photo, object_colour(r), object_colour(r)));
-    }
-    // The small things that cover a used desk (pens, phones, staplers, cases, tins, bottles, notes):
-    // boxes of 2–15 cm in strong colours and prints, a dozen or more; they may touch and stack.
-    const int small = 15 + r.pick(20);
-    for (int k = 0; k < small; ++k) {
-        const double w = r.uniform(0.02, 0.15), d = r.uniform(0.02, 0.15), h = r.uniform(0.01, 0.15);
-        const double a = spot(w, len), b = spot(d, depth);
-        const double pick = r.uniform(0, 1);
-        const TextureStyle style = pick < 0.45 ? TextureStyle::Photo : pick < 0.7 ? TextureStyle::Poster : TextureStyle::Paint;
-        place(a, a + w, b, b + d, h, mat(style, object_colour(r), object_colour(r), r.uniform(0, 1) < 0.3 ? 0.4f : 0.0f));
-    }
-    for (int k = 0; k < 2; ++k) {
-        const double ca = r.uniform(0.05, std::max(0.06, len - 0.05));
-        place(ca, ca + 0.008, r.uniform(0.05, 0.3), mon_b, 0.008, mat(TextureStyle::Paint, black * 2, black));
-    }
 }
 
 }  // namespace
@@ -308,6 +180,22 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         return true;
     };
 
+    // A flat panel on wall 0..3 (−x, +x, −y, +y): `centre` along the wall, `bottom` and `height` above
+    // the floor, `thickness` into the room.
+    auto wall_panel = [&](int wall, double centre, double width, double bottom, double height, double thickness) {
+        const double wall_coord = wall == 0 ? x0 : wall == 1 ? x1 : wall == 2 ? y0 : y1;
+        const double a = wall_coord, b = wall_coord + (wall % 2 == 0 ? 1.0 : -1.0) * thickness;
+        Box panel;
+        if (wall < 2) {
+            panel.min = {std::min(a, b), centre - width / 2, floor - bottom - height};
+            panel.max = {std::max(a, b), centre + width / 2, floor - bottom};
+        } else {
+            panel.min = {centre - width / 2, std::min(a, b), floor - bottom - height};
+            panel.max = {centre + width / 2, std::max(a, b), floor - bottom};
+        }
+        return panel;
+    };
+
     // Posters on every wall, 1.0–2.0 m above the floor (z down: floor − height).
     for (int wall = 0; wall < 4; ++wall) {
         const bool along_x = wall >= 2;
@@ -316,19 +204,9 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         for (int k = 0; k < count; ++k) {
             const double centre = (along_x ? x0 : y0) + length * (k + r.uniform(0.3, 0.7)) / count;
             const double w = r.uniform(0.5, 1.1), h = r.uniform(0.4, 0.9), bottom = r.uniform(0.9, 1.4);
-            const double wall_coord = wall == 0 ? x0 : wall == 1 ? x1 : wall == 2 ? y0 : y1;
-            const double inward = (wall % 2 == 0) ? 1.0 : -1.0;
-            Eigen::Vector3d mn, mx;
-            const double a = wall_coord, b = wall_coord + inward * 0.012;
-            if (!along_x) {
-                mn = {std::min(a, b), centre - w / 2, floor - bottom - h};
-                mx = {std::max(a, b), centre + w / 2, floor - bottom};
-            } else {
-                mn = {centre - w / 2, std::min(a, b), floor - bottom - h};
-                mx = {centre + w / 2, std::max(a, b), floor - bottom};
-            }
+            const Box panel = wall_panel(wall, centre, w, bottom, h, 0.012);
             const TextureStyle style = r.uniform(0, 1) < 0.35 ? TextureStyle::Pages : TextureStyle::Poster;
-            add(mn, mx, material(r, style, colour(r, 0.7f, 0.9f), colour(r, 0.5f, 0.7f), ++next_seed));
+            add(panel.min, panel.max, material(r, style, colour(r, 0.7f, 0.9f), colour(r, 0.5f, 0.7f), ++next_seed));
         }
     }
 
@@ -340,22 +218,13 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         const double length = along_x ? x1 - x0 : y1 - y0, w = r.uniform(0.9, 1.6);
         if (length < w + 0.4) continue;
         const double centre = (along_x ? x0 : y0) + r.uniform(0.2 + w / 2, length - 0.2 - w / 2);
-        const double wall_coord = wall == 0 ? x0 : wall == 1 ? x1 : wall == 2 ? y0 : y1;
-        const double inward = (wall % 2 == 0) ? 1.0 : -1.0, a = wall_coord, b = wall_coord + inward * 0.015;
         const double bottom = r.uniform(0.8, 1.0), h = r.uniform(1.0, 1.4);
-        Eigen::Vector3d mn, mx;
-        if (!along_x) {
-            mn = {std::min(a, b), centre - w / 2, floor - bottom - h};
-            mx = {std::max(a, b), centre + w / 2, floor - bottom};
-        } else {
-            mn = {centre - w / 2, std::min(a, b), floor - bottom - h};
-            mx = {centre + w / 2, std::max(a, b), floor - bottom};
-        }
+        const Box pane = wall_panel(wall, centre, w, bottom, h, 0.015);
         Material glass =
             material(r, TextureStyle::Tiles, Eigen::Vector3f(0.8f, 0.85f, 0.9f), Eigen::Vector3f(0.1f, 0.1f, 0.1f), ++next_seed);
         glass.scale = static_cast<float>(w);  // one mullion cross per pane
         glass.emission = static_cast<float>(r.uniform(1.5, 3.0));
-        add(mn, mx, glass);
+        add(pane.min, pane.max, glass);
     }
 
     // Desks where the cameras look down: every 10th pose's central ray, met at desk height 0.3–2.2 m
