@@ -28,7 +28,7 @@ void write(const fs::path& p, const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("poses between two stamps: position linear, rotation by slerp; none outside", "[synth][plan]") {
+TEST_CASE("poses between two stamps: position linear, rotation by slerp, none outside", "[synth][plan]") {
     const metrics::Trajectory path{pose_at(1.0, 0.0, 0.0), pose_at(2.0, 1.0, 0.4)};
     Eigen::Isometry3d T;
     REQUIRE(interpolate_pose(path, 1.25, T));
@@ -40,7 +40,7 @@ TEST_CASE("poses between two stamps: position linear, rotation by slerp; none ou
     CHECK_FALSE(interpolate_pose(path, 2.01, T));
 }
 
-TEST_CASE("--stamps: one frame per associated pair, depth at its own stamp, pairs outside the path left out", "[synth][plan]") {
+TEST_CASE("synth stamps from a TUM folder: one frame per associated pair, depth at its own stamp, pairs outside the path left out", "[synth][plan]") {
     test::TempDir tmp;
     // Colour at 1.0, 1.1, 1.2, 3.0; depth 12 ms later (3.0 lies beyond the trajectory's end).
     write(tmp.path() / "rgb.txt", "# colour\n1.000 rgb/a.png\n1.100 rgb/b.png\n1.200 rgb/c.png\n3.000 rgb/d.png\n");
@@ -91,7 +91,7 @@ TEST_CASE("a TUM motion-capture path (z up) is turned into the office frame (z d
     CHECK(office_from_world({putk2}, 3.0).isApprox(Eigen::Isometry3d::Identity()));
 }
 
-TEST_CASE("cameras by name carry TUM's published calibration; a camera file is checked line by line", "[synth][camera]") {
+TEST_CASE("cameras by name carry TUM's published calibration and a camera file is checked line by line", "[synth][camera]") {
     const CameraSpec fr1 = camera_by_name_or_file("tum-fr1");
     CHECK(fr1.color.width == 640);
     CHECK(fr1.color.fx == 517.3);
@@ -118,7 +118,7 @@ TEST_CASE("cameras by name carry TUM's published calibration; a camera file is c
     }
 }
 
-TEST_CASE("effects: all, none and ±name from the defaults; an unknown name lists the known ones", "[synth][effects]") {
+TEST_CASE("effects: all, none and ±name from the defaults, an unknown name lists the known ones", "[synth][effects]") {
     const Effects defaults = parse_effects("");
     CHECK(defaults.rolling_shutter);
     CHECK_FALSE(defaults.stamp_offsets);
