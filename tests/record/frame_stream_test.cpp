@@ -83,7 +83,8 @@ TEST_CASE("a missing or empty stream has no frames and no error", "[record][fram
     CHECK(decode_frames(stream_file("")).error.empty());
 }
 
-TEST_CASE("dropped frames (real time, filters) come back as dropped, without a pose, and a forged one ends the stream", "[record][frames]") {
+TEST_CASE("dropped frames (real time, filters) come back as dropped, without a pose, and a forged one ends the stream",
+          "[record][frames]") {
     FrameRecord kept, dropped;
     kept.index = 0;
     kept.stamp = 1.0;

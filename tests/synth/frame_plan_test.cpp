@@ -40,7 +40,8 @@ TEST_CASE("poses between two stamps: position linear, rotation by slerp, none ou
     CHECK_FALSE(interpolate_pose(path, 2.01, T));
 }
 
-TEST_CASE("synth stamps from a TUM folder: one frame per associated pair, depth at its own stamp, pairs outside the path left out", "[synth][plan]") {
+TEST_CASE("synth stamps from a TUM folder: one frame per associated pair, depth at its own stamp, pairs outside the path left out",
+          "[synth][plan]") {
     test::TempDir tmp;
     // Colour at 1.0, 1.1, 1.2, 3.0; depth 12 ms later (3.0 lies beyond the trajectory's end).
     write(tmp.path() / "rgb.txt", "# colour\n1.000 rgb/a.png\n1.100 rgb/b.png\n1.200 rgb/c.png\n3.000 rgb/d.png\n");

@@ -127,7 +127,8 @@ TEST_CASE("at a step edge Kinect v1 loses more depth, and Kinect v2 shows flying
     CHECK(f1 == 0);
 }
 
-TEST_CASE("Kinect v1 returns thin out with range before its limit and the border of its registered image is unmeasured", "[synth][sensor]") {
+TEST_CASE("Kinect v1 returns thin out with range before its limit and the border of its registered image is unmeasured",
+          "[synth][sensor]") {
     auto valid_share = [](double z, const std::string& effects) {
         TestRig rig(z);
         SensorModel sensor = kinect1();
