@@ -198,25 +198,23 @@ void score_edge_shifts(const cv::Mat& depth_m, const cv::Mat& grey, ShiftScores&
     cv::Sobel(grey, gy, CV_32F, 0, 1);
     cv::magnitude(gx, gy, magnitude);
     // Depth steps, centred: |z(u+1) − z(u−1)| or the same vertically over 10 % of z, both sides valid.
-    cv::Mat steps = cv::Mat::zeros(H, W, CV_8U);
-    for (int v = 1; v < H - 1; ++v)
-        for (int u = 1; u < W - 1; ++u) {
+    // Collected once (inside the margin every shift can reach), then scored for each shift.
+    const int m = kMaxShift + 16;
+    std::vector<cv::Point> steps;
+    for (int v = m; v < H - m; ++v)
+        for (int u = m; u < W - m; ++u) {
             const float z = depth_m.at<float>(v, u), l = depth_m.at<float>(v, u - 1), r = depth_m.at<float>(v, u + 1),
                         t = depth_m.at<float>(v - 1, u), b = depth_m.at<float>(v + 1, u);
             if (z <= 0 || l <= 0 || r <= 0 || t <= 0 || b <= 0) continue;
-            if (std::abs(r - l) > 0.1f * z || std::abs(b - t) > 0.1f * z) steps.at<uint8_t>(v, u) = 1;
+            if (std::abs(r - l) > 0.1f * z || std::abs(b - t) > 0.1f * z) steps.emplace_back(u, v);
         }
-    const int m = kMaxShift + 16;
+    if (steps.empty()) return;
     for (int dy = -kMaxShift; dy <= kMaxShift; ++dy)
         for (int dx = -kMaxShift; dx <= kMaxShift; ++dx) {
-            double hits = 0, total = 0;
-            for (int v = m; v < H - m; ++v)
-                for (int u = m; u < W - m; ++u) {
-                    if (!steps.at<uint8_t>(v, u)) continue;
-                    ++total;
-                    hits += magnitude.at<float>(v - dy, u - dx) > 60;
-                }
-            if (total > 0) scores[static_cast<std::size_t>(dy + kMaxShift)][static_cast<std::size_t>(dx + kMaxShift)] += hits / total;
+            double hits = 0;
+            for (const cv::Point& p : steps) hits += magnitude.at<float>(p.y - dy, p.x - dx) > 60;
+            scores[static_cast<std::size_t>(dy + kMaxShift)][static_cast<std::size_t>(dx + kMaxShift)] +=
+                hits / static_cast<double>(steps.size());
         }
 }
 
