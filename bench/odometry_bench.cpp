@@ -8,13 +8,19 @@
 #include "track/frame_cache.hpp"
 #include "track/frame_prefetcher.hpp"
 
+#include "dataset_files.hpp"       // plugins/common
+#include "depth_registration.hpp"  // plugins/common
+#include "png_decode.hpp"          // plugins/common
+
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <sstream>
 
 using namespace vobench;
 namespace fs = std::filesystem;
@@ -26,8 +32,17 @@ struct Sequence {
     std::vector<std::unique_ptr<OwnedFrame>> frames;
 };
 
+// The build's plugins; folders in $VOBENCH_PLUGIN_PATH come first, so an older build's reader can be
+// measured against today's decode-only reference (VOBENCH_PLUGIN_PATH=old/build/plugins).
 const PluginRegistry& registry() {
-    static const PluginRegistry r({VOBENCH_PLUGIN_DIR});
+    static const PluginRegistry r([] {
+        std::vector<fs::path> folders;
+        std::stringstream path(std::getenv("VOBENCH_PLUGIN_PATH") ? std::getenv("VOBENCH_PLUGIN_PATH") : "");
+        for (std::string folder; std::getline(path, folder, ':');)
+            if (!folder.empty()) folders.emplace_back(folder);
+        folders.emplace_back(VOBENCH_PLUGIN_DIR);
+        return folders;
+    }());
     return r;
 }
 
@@ -125,16 +140,25 @@ void run_reader(benchmark::State& state, const std::string& reader, const std::s
     state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-// The reference for the Kinect v2 frame path (issue #19): only decoding the same PNGs with OpenCV
-// (colour 1920×1080 BGR, depth 512×424 16-bit), one after the other, nothing registered. The putk2
-// reader's delivery (run_reader putk2/kinect2) is measured against this, in the same run.
+// The reference for the Kinect v2 frame path (issue #19): only decoding the same PNGs with OpenCV, one
+// after the other, nothing registered — putk2 layout: colour 1920×1080 BGR and depth 512×424 16-bit;
+// TUM layout (the demo's): both 1920×1080. The readers' delivery (run_reader putk2/kinect2, tum/kinect2)
+// is measured against these, in the same run.
 void run_decode_only(benchmark::State& state, const std::string& sensor, const std::string& layout) {
     const fs::path dir = synthetic("reader-" + sensor + "-" + layout, sensor, layout, 10);
     std::vector<std::pair<fs::path, fs::path>> files;
-    for (int k = 0; fs::exists(dir / fmt_index("rgb_", k)); ++k)
-        files.emplace_back(dir / fmt_index("rgb_", k), dir / fmt_index("depth_", k));
+    if (layout == "tum") {  // rgb/STAMP.png and depth/STAMP.png, the same stamps when rendered
+        std::vector<fs::path> colour;
+        for (const auto& e : fs::directory_iterator(dir / "rgb")) colour.push_back(e.path());
+        std::sort(colour.begin(), colour.end());
+        for (const fs::path& c : colour)
+            if (fs::exists(dir / "depth" / c.filename())) files.emplace_back(c, dir / "depth" / c.filename());
+    } else {
+        for (int k = 0; fs::exists(dir / fmt_index("rgb_", k)); ++k)
+            files.emplace_back(dir / fmt_index("rgb_", k), dir / fmt_index("depth_", k));
+    }
     if (files.empty()) {
-        state.SkipWithError("no rgb_00000.png in the rendered folder");
+        state.SkipWithError("no colour and depth pairs in the rendered folder");
         return;
     }
     std::size_t i = 0;
@@ -144,6 +168,27 @@ void run_decode_only(benchmark::State& state, const std::string& sensor, const s
         benchmark::DoNotOptimize(cv::imread(depth.string(), cv::IMREAD_UNCHANGED).data);
     }
     state.counters["fps"] = benchmark::Counter(static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+}
+
+// The parts of the putk2 reader's Kinect v2 delivery, one at a time on the same files: each PNG decoded
+// by cv::imread or by the readers' own path (libdeflate), and the depth registration alone.
+void run_decode_part(benchmark::State& state, const std::string& part) {
+    const fs::path dir = synthetic("reader-kinect2-putk2", "kinect2", "putk2", 10);
+    const bool color = part.find("color") != std::string::npos, own = part.find("own") != std::string::npos;
+    const int flags = color ? cv::IMREAD_COLOR : cv::IMREAD_UNCHANGED;
+    const fs::path file = dir / fmt_index(color ? "rgb_" : "depth_", 0);
+    for (auto _ : state) benchmark::DoNotOptimize((own ? files::decode_png(file, flags) : cv::imread(file.string(), flags)).data);
+}
+
+void run_registration(benchmark::State& state) {
+    const fs::path dir = synthetic("reader-kinect2-putk2", "kinect2", "putk2", 10);
+    cv::Mat metres;
+    cv::imread((dir / fmt_index("depth_", 0)).string(), cv::IMREAD_UNCHANGED).convertTo(metres, CV_32F, 0.001);
+    const rgbd::Intrinsics d{365.5, 365.5, 255.5, 211.5, 0, {}}, c{1081.4, 1081.4, 959.5, 539.5, 0, {}};
+    Eigen::Isometry3d color_from_depth = Eigen::Isometry3d::Identity();
+    color_from_depth.translation() = Eigen::Vector3d(0.052, 0, 0);
+    const rgbd::DepthRegistration registration(d, c, color_from_depth, metres.size(), cv::Size(1920, 1080));
+    for (auto _ : state) benchmark::DoNotOptimize(registration(metres).data);
 }
 
 // The same frames from the decoded-frame cache (zstd) instead of the reader.
@@ -171,6 +216,14 @@ BENCHMARK_CAPTURE(run_reader, putk2 / kinect2_1920x1080_registered, "putk2", "ki
 BENCHMARK_CAPTURE(run_decode_only, opencv_imread / kinect2_1920x1080_and_512x424, "kinect2", "putk2")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_only, opencv_imread / kinect2_1920x1080_both_tum, "kinect2", "tum")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_color, "color")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_color, "color own")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_depth, "depth")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_depth, "depth own")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(run_registration)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();

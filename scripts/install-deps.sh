@@ -18,6 +18,7 @@ packages=(
   pybind11-dev python3-dev python3-numpy  # the Python bridge plugins (python, python_dataset)
   libopen3d-dev                         # the open3d_rgbd plugin (Open3D's RGB-D odometry)
   libembree-dev                         # the renderer's ray casting (Embree 3)
+  libdeflate-dev                        # the dataset readers' PNG inflating (plugins/common/png_raster.cpp)
 )
 if [ "${1:-}" = "--test" ]; then
   packages+=(

@@ -1,11 +1,17 @@
 #include "dataset_files.hpp"
 
+#include "png_decode.hpp"
+
 #include <vobench/plugin.hpp>
 
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+#include <cctype>
 #include <fstream>
+#include <future>
 #include <sstream>
+#include <system_error>
 
 namespace vobench::files {
 
@@ -21,7 +27,11 @@ std::string read_text(const std::filesystem::path& path) {
 
 cv::Mat load_image(const std::filesystem::path& path, int flags) {
     if (!std::filesystem::exists(path)) throw Error(VOBENCH_IO_ERROR, path.string() + ": missing file");
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
     cv::Mat m;
+    if (extension == ".png") m = decode_png(path, flags);  // empty: not a plain PNG of the kinds it decodes
+    if (!m.empty()) return m;
     try {
         m = cv::imread(path.string(), flags);
     } catch (const cv::Exception& e) {
@@ -29,6 +39,18 @@ cv::Mat load_image(const std::filesystem::path& path, int flags) {
     }
     if (m.empty()) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot decode image (corrupt or truncated?)");
     return m;
+}
+
+ColorAndDepth load_color_and_depth(const std::filesystem::path& color, int color_flags, const std::filesystem::path& depth,
+                                   int depth_flags) {
+    std::future<cv::Mat> depth_image;
+    try {
+        depth_image = std::async(std::launch::async, [&] { return load_image(depth, depth_flags); });
+    } catch (const std::system_error&) {  // no thread to be had (a process limit): one after the other
+        return {load_image(color, color_flags), load_image(depth, depth_flags)};
+    }
+    cv::Mat color_image = load_image(color, color_flags);  // if this throws, the future's destructor waits
+    return {std::move(color_image), depth_image.get()};
 }
 
 void require_depth16(const cv::Mat& depth, const std::filesystem::path& path) {

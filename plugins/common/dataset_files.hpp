@@ -15,8 +15,17 @@ namespace vobench::files {
 
 std::string read_text(const std::filesystem::path& path);
 
-// cv::imread with clear messages: "missing file", "cannot decode image (corrupt or truncated?)".
+// cv::imread with clear messages: "missing file", "cannot decode image (corrupt or truncated?)";
+// plain PNGs of the usual kinds inflated with libdeflate instead (png_decode.hpp), with the same pixels.
 cv::Mat load_image(const std::filesystem::path& path, int imread_flags);
+
+// One frame's colour and depth images, decoded at the same time on two threads: for Kinect v2 each is a
+// PNG that takes tens of milliseconds (issue #19). Errors as load_image's; colour's first if both fail.
+struct ColorAndDepth {
+    cv::Mat color, depth;
+};
+ColorAndDepth load_color_and_depth(const std::filesystem::path& color, int color_flags, const std::filesystem::path& depth,
+                                   int depth_flags);
 
 // Throws unless `depth` is 16-bit single-channel ("found 8-bit" when it is 8-bit).
 void require_depth16(const cv::Mat& depth, const std::filesystem::path& path);

@@ -13,6 +13,7 @@
 #include <opencv2/core.hpp>
 
 #include <array>
+#include <vector>
 
 namespace vobench::rgbd {
 
@@ -25,8 +26,27 @@ struct Intrinsics {
 // Projects a camera-frame point (z > 0) to pixels with the rational distortion model.
 Eigen::Vector2d project(const Intrinsics& camera, const Eigen::Vector3d& point);
 
-// `depth`: CV_32FC1 metres in the (undistorted pinhole) depth camera; 0 = no reading.
-// Returns CV_32FC1 metres of `color_size`; 0 where nothing projects.
+// The registration of one camera pair, set up once: each depth pixel's viewing ray, already turned
+// into the colour camera's axes, is a table entry, so a frame costs one multiply-add, one projection
+// and one splat per depth pixel (a reader registers every frame of a sequence with the same pair).
+class DepthRegistration {
+public:
+    DepthRegistration(const Intrinsics& depth_camera, const Intrinsics& color_camera, const Eigen::Isometry3d& color_from_depth,
+                      cv::Size depth_size, cv::Size color_size);
+
+    // `depth`: CV_32FC1 metres of depth_size in the (undistorted pinhole) depth camera; 0 = no reading.
+    // Returns CV_32FC1 metres of color_size; 0 where nothing projects.
+    cv::Mat operator()(const cv::Mat& depth) const;
+
+private:
+    Intrinsics color_;
+    Eigen::Vector3d translation_;
+    cv::Size depth_size_, color_size_;
+    double half_ = 0;                    // half the side of a depth pixel's square at the depth camera, colour px
+    std::vector<Eigen::Vector3d> rays_;  // R · ((u − cx)/fx, (v − cy)/fy, 1), row-major over the depth image
+};
+
+// One frame with a registration made for it (the generator's use: one call per frame and camera).
 cv::Mat register_depth(const cv::Mat& depth, const Intrinsics& depth_camera, const Intrinsics& color_camera,
                        const Eigen::Isometry3d& color_from_depth, cv::Size color_size);
 

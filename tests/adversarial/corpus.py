@@ -17,9 +17,11 @@ import re
 import resource
 import shutil
 import signal
+import struct
 import subprocess
 import sys
 import time
+import zlib
 
 HOSTILE = "seq'\"\n; system(\"touch PWNED_gp\") `touch PWNED_bt` $(touch PWNED_sh) <script>alert(1)</script> \\input{/etc/passwd} " \
           "\\write18{touch PWNED_tex} =cmd|' /C calc'!A0 \u202eRTL\u202c | * _x_ [l](u)"
@@ -363,9 +365,54 @@ def data_faults(args, w):
     def binary_gt(d):
         open(os.path.join(d, "groundtruth.txt"), "wb").write(bytes(range(256)) * 64)
 
+    # PNG files that get past the signature, for the readers' own PNG path (plugins/common/png_raster.cpp)
+    # and then cv::imread: each is a clear failure naming the frame and file, or decodes as libpng does.
+    def png_chunks(b):
+        at, out = 8, []
+        while at + 12 <= len(b):
+            n = struct.unpack(">I", b[at:at + 4])[0]
+            out.append((b[at + 4:at + 8], b[at + 8:at + 8 + n]))
+            at += 12 + n
+        return out
+
+    def png_of(chunks):
+        return b"\x89PNG\r\n\x1a\n" + b"".join(
+            struct.pack(">I", len(body)) + t + body + struct.pack(">I", zlib.crc32(t + body)) for t, body in chunks)
+
+    def frame_file(d, listing, k):
+        return os.path.join(d, lines(d, listing)[3 + k].split()[1])
+
+    def png_bad_crc(d):  # one byte of the image data changed, the chunk's CRC left as it was
+        f = frame_file(d, "rgb.txt", 2)
+        b = bytearray(open(f, "rb").read())
+        b[b.find(b"IDAT") + 100] ^= 0x5A
+        open(f, "wb").write(bytes(b))
+
+    def png_claims_huge(d):  # a valid header (right CRC) claiming 60000 x 60000 pixels
+        f = frame_file(d, "depth.txt", 5)
+        chunks = png_chunks(open(f, "rb").read())
+        chunks[0] = (b"IHDR", struct.pack(">II", 60000, 60000) + chunks[0][1][8:])
+        open(f, "wb").write(png_of(chunks))
+
+    def png_8bit_depth(d):  # a well-formed 8-bit grey PNG where 16-bit depth belongs
+        rows = b"".join(b"\x00" + bytes([(x + y) % 256 for x in range(640)]) for y in range(480))
+        open(frame_file(d, "depth.txt", 6), "wb").write(
+            png_of([(b"IHDR", struct.pack(">IIBBBBB", 640, 480, 8, 0, 0, 0, 0)), (b"IDAT", zlib.compress(rows)), (b"IEND", b"")]))
+
+    def png_too_much_data(d):  # the zlib stream holds one row more than the image (valid CRCs)
+        f = frame_file(d, "rgb.txt", 1)
+        chunks = png_chunks(open(f, "rb").read())
+        raw = zlib.decompress(b"".join(body for t, body in chunks if t == b"IDAT"))
+        rest = [c for c in chunks if c[0] not in (b"IDAT", b"IEND")]
+        open(f, "wb").write(png_of(rest + [(b"IDAT", zlib.compress(raw + raw[:640 * 3 + 1])), (b"IEND", b"")]))
+
     expected = {
         "good": "ok",
         variant("corrupt_png", corrupt_png): r"reading frame 3: ",
+        variant("png_bad_crc", png_bad_crc): r"reading frame 2: .*rgb.*cannot decode image",
+        variant("png_claims_huge", png_claims_huge): r"reading frame 5: .*depth.*cannot decode image",
+        variant("png_8bit_depth", png_8bit_depth): r"reading frame 6: .*depth.*16-bit",
+        variant("png_too_much_data", png_too_much_data): r"ok|reading frame 1: .*rgb.*cannot decode image",
         variant("missing_depth", missing_depth): r"reading frame 4: |setting up: .*depth",
         variant("garbage_list", garbage_list): r"setting up: .*rgb\.txt",
         variant("nan_ground_truth", nan_gt): r"ok|ground-truth pose .* not finite|groundtruth\.txt",

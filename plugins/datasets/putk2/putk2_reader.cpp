@@ -26,6 +26,7 @@
 #include <opencv2/rgbd.hpp>
 
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 namespace {
@@ -113,9 +114,10 @@ public:
     const vobench_frame& read_frame(uint64_t index) override {
         vobench::files::require_frame_index(index, frames_.size());
         const Frame& f = frames_[index];
-        color_ = vobench::files::load_image(root_ / f.color, cv::IMREAD_COLOR);
         const fs::path depth_path = root_ / f.depth;
-        cv::Mat raw = vobench::files::load_image(depth_path, cv::IMREAD_UNCHANGED);
+        auto images = vobench::files::load_color_and_depth(root_ / f.color, cv::IMREAD_COLOR, depth_path, cv::IMREAD_UNCHANGED);
+        color_ = std::move(images.color);
+        const cv::Mat raw = std::move(images.depth);
         if (color_.cols != camera_.width || color_.rows != camera_.height)
             throw Error(VOBENCH_IO_ERROR, (root_ / f.color).string() + ": " + std::to_string(color_.cols) + "x" +
                                               std::to_string(color_.rows) + ", expected " + std::to_string(camera_.width) + "x" +
@@ -232,6 +234,8 @@ private:
                 depth_camera_.in_color.translation() = Eigen::Vector3d(0.052, 0, 0);
                 host().warn("no depth_camera.txt: using nominal Kinect v2 depth intrinsics and a 5.2 cm baseline");
             }
+            const vobench::rgbd::Intrinsics d{depth_camera_.fx, depth_camera_.fy, depth_camera_.cx, depth_camera_.cy, 0, {}};
+            registration_.emplace(d, color_intrinsics_, depth_camera_.in_color, cv::Size(512, 424), color_size);
         }
     }
 
@@ -258,8 +262,7 @@ private:
         cv::Mat metres;
         raw.convertTo(metres, CV_32F, depth_unit_);
         if (!opencv_registration_) {
-            const vobench::rgbd::Intrinsics d{depth_camera_.fx, depth_camera_.fy, depth_camera_.cx, depth_camera_.cy, 0, {}};
-            return vobench::rgbd::register_depth(metres, d, color_intrinsics_, depth_camera_.in_color, color_.size());
+            return (*registration_)(metres);
         }
         const cv::Matx33d Kd(depth_camera_.fx, 0, depth_camera_.cx, 0, depth_camera_.fy, depth_camera_.cy, 0, 0, 1);
         const cv::Matx33d Kc(camera_.fx, 0, camera_.cx, 0, camera_.fy, camera_.cy, 0, 0, 1);
@@ -283,6 +286,7 @@ private:
     vobench_camera camera_{};
     vobench::rgbd::Intrinsics color_intrinsics_;
     vobench::putk2::DepthCamera depth_camera_;
+    std::optional<vobench::rgbd::DepthRegistration> registration_;  // Kinect v2, set up once by open()
     vobench_sequence_info info_{};
     cv::Mat color_, depth_;
     vobench_image color_image_{}, depth_image_{};

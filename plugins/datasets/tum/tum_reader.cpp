@@ -122,8 +122,9 @@ public:
         vobench::files::require_frame_index(index, pairs_.size());
         const Pair& pair = pairs_[index];
         const fs::path color_path = root_ / pair.color.path, depth_path = root_ / pair.depth.path;
-        color_ = vobench::files::load_image(color_path, cv::IMREAD_COLOR);
-        depth_ = vobench::files::load_image(depth_path, cv::IMREAD_UNCHANGED);
+        auto images = vobench::files::load_color_and_depth(color_path, cv::IMREAD_COLOR, depth_path, cv::IMREAD_UNCHANGED);
+        color_ = std::move(images.color);
+        depth_ = std::move(images.depth);
         if (color_.type() != CV_8UC3) throw Error(VOBENCH_IO_ERROR, color_path.string() + ": not an 8-bit colour image");
         vobench::files::require_depth16(depth_, depth_path);
         if (color_.cols != camera_.width || color_.rows != camera_.height || depth_.size() != color_.size())

@@ -112,6 +112,7 @@ static const vobench_plugin_descriptor k_descriptor = {
     k_params,
     NULL,
     &k_api,
+    NULL, /* filter: this is an odometry plugin */
 };
 
 VOBENCH_EXPORT const vobench_plugin_descriptor* vobench_plugin_entry_v1(uint32_t host_abi_version, uint32_t host_api_version) {
