@@ -180,6 +180,27 @@ void run_decode_part(benchmark::State& state, const std::string& part) {
     for (auto _ : state) benchmark::DoNotOptimize((own ? files::decode_png(file, flags) : cv::imread(file.string(), flags)).data);
 }
 
+// The same on a real TUM fr1/rpy frame (640×480 colour and 16-bit depth, both rows filtered with Sub).
+void run_decode_real(benchmark::State& state, bool own) {
+    const char* env = std::getenv("VOBENCH_DATA_DIR");
+    const fs::path dir = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
+    if (!fs::exists(dir / "rgb")) {
+        state.SkipWithError("no real TUM sample (VOBENCH_DATA_DIR)");
+        return;
+    }
+    std::vector<fs::path> color, depth;
+    for (const auto& e : fs::directory_iterator(dir / "rgb")) color.push_back(e.path());
+    for (const auto& e : fs::directory_iterator(dir / "depth")) depth.push_back(e.path());
+    std::sort(color.begin(), color.end());
+    std::sort(depth.begin(), depth.end());
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(
+            (own ? files::decode_png(color[10], cv::IMREAD_COLOR) : cv::imread(color[10].string(), cv::IMREAD_COLOR)).data);
+        benchmark::DoNotOptimize(
+            (own ? files::decode_png(depth[10], cv::IMREAD_UNCHANGED) : cv::imread(depth[10].string(), cv::IMREAD_UNCHANGED)).data);
+    }
+}
+
 void run_registration(benchmark::State& state) {
     const fs::path dir = synthetic("reader-kinect2-putk2", "kinect2", "putk2", 10);
     cv::Mat metres;
@@ -223,6 +244,8 @@ BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_color, "color")->Unit
 BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_color, "color own")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_depth, "depth")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_depth, "depth own")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_real, opencv_imread / tum_fr1_640x480_both, false)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_decode_real, readers_png / tum_fr1_640x480_both, true)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(run_registration)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();

@@ -23,8 +23,12 @@ inline int paeth(int a, int b, int c) {
 }
 
 // Undoes one row's filter in place (§9.2). `prior`: the row above, already unfiltered, or null for
-// the first row (all zero, so Up is nothing, Average halves the left byte, Paeth is Sub).
-bool unfilter(uint8_t type, uint8_t* row, const uint8_t* prior, std::size_t n, std::size_t bpp) {
+// the first row (all zero, so Up is nothing, Average halves the left byte, Paeth is Sub). BPP, the
+// bytes per pixel, is a template argument for the common sizes: each byte depends on the one BPP
+// before it, and a constant distance lets the compiler keep the chain in registers.
+template <std::size_t BPP>
+bool unfilter_fixed(uint8_t type, uint8_t* row, const uint8_t* prior, std::size_t n, std::size_t bpp_runtime) {
+    const std::size_t bpp = BPP ? BPP : bpp_runtime;
     switch (type) {
         case 0: return true;
         case 1:
@@ -43,11 +47,21 @@ bool unfilter(uint8_t type, uint8_t* row, const uint8_t* prior, std::size_t n, s
             }
             return true;
         case 4:
-            if (!prior) return unfilter(1, row, nullptr, n, bpp);
+            if (!prior) return unfilter_fixed<BPP>(1, row, nullptr, n, bpp);
             for (std::size_t x = 0; x < bpp && x < n; ++x) row[x] = static_cast<uint8_t>(row[x] + prior[x]);
             for (std::size_t x = bpp; x < n; ++x) row[x] = static_cast<uint8_t>(row[x] + paeth(row[x - bpp], prior[x], prior[x - bpp]));
             return true;
         default: return false;  // no such filter: a broken file
+    }
+}
+
+bool unfilter(uint8_t type, uint8_t* row, const uint8_t* prior, std::size_t n, std::size_t bpp) {
+    switch (bpp) {
+        case 1: return unfilter_fixed<1>(type, row, prior, n, bpp);
+        case 2: return unfilter_fixed<2>(type, row, prior, n, bpp);
+        case 3: return unfilter_fixed<3>(type, row, prior, n, bpp);
+        case 4: return unfilter_fixed<4>(type, row, prior, n, bpp);
+        default: return unfilter_fixed<0>(type, row, prior, n, bpp);
     }
 }
 
