@@ -38,6 +38,7 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p, const 
     const int x = static_cast<int>(std::lround(p.x)), y = static_cast<int>(std::lround(p.y));
     if (x < 1 || y < 1 || x >= depth.cols - 1 || y >= depth.rows - 1) return NAN;
     double lo = 1e9, hi = 0, centre = 0;
+    double window[3][3];
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
             const double d =
@@ -45,10 +46,17 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& p, const 
             if (!(d > 0)) return NAN;
             lo = std::min(lo, d);
             hi = std::max(hi, d);
+            window[dy + 1][dx + 1] = d;
             if (dx == 0 && dy == 0) centre = d;
         }
     if (centre < range.min_m || centre > range.max_m || hi - lo > 0.05 * centre) return NAN;
-    return centre;
+    if (!range.interpolate) return centre;
+    // Bilinear at the sub-pixel position, from the 2×2 pixels around it (inside the smooth window).
+    const double fx = p.x - x, fy = p.y - y;  // in [−0.5, 0.5]
+    const int ix = fx < 0 ? 0 : 1, iy = fy < 0 ? 0 : 1;
+    const double ax = fx < 0 ? fx + 1 : fx, ay = fy < 0 ? fy + 1 : fy;
+    return (1 - ay) * ((1 - ax) * window[iy][ix] + ax * window[iy][ix + 1]) +
+           ay * ((1 - ax) * window[iy + 1][ix] + ax * window[iy + 1][ix + 1]);
 }
 
 std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels, const cv::Matx33d& K,

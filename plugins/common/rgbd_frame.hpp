@@ -20,6 +20,7 @@ void to_gray(const vobench_image& image, cv::Mat& gray);
 
 struct DepthRange {
     double min_m = 0.1, max_m = 6.0;
+    bool interpolate = false;  // bilinear at the sub-pixel position instead of the nearest pixel's depth
 };
 
 // Metric depth at the nearest pixel, or NaN: missing, out of range, or on a depth edge (the 3×3

@@ -10,8 +10,9 @@
 // estimation) and counters reported per frame. Parameters and their defaults: README.md.
 #include "dbscan.hpp"
 #include "grid_detector.hpp"
-#include "rgbd_frame.hpp"    // plugins/common
-#include "rigid_ransac.hpp"  // plugins/common
+#include "rgbd_frame.hpp"  // plugins/common
+#include "rigid_ransac.hpp"
+#include "rigid_refine.hpp"  // plugins/common
 
 #include <vobench/plugin.hpp>
 
@@ -39,6 +40,7 @@ public:
                 "https://doi.org/10.1007/s00138-016-0802-6",
                 {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper",
                   "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold and depth_weighting off, "
+                  "refinement umeyama, "
                   "whatever they are set to)"},
                  {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
@@ -59,6 +61,14 @@ public:
                  {"ransac_probability", VOBENCH_PARAM_DOUBLE, "0.99", 0.5, 0.99999, "", "RANSAC success probability p"},
                  {"ransac_max_iterations", VOBENCH_PARAM_INT, "1000", 1, 100000, "", "RANSAC iteration cap"},
                  {"depth_weighting", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "weight the refinement by 1/z² (depth noise grows with z)"},
+                 {"refinement", VOBENCH_PARAM_ENUM, "noise_model", 0, 0, "umeyama|noise_model",
+                  "after RANSAC: Umeyama on the inliers (the paper), or Gauss-Newton under the sensor's noise model with "
+                  "χ²-gated inliers (rigid_refine.hpp)"},
+                 {"depth_noise", VOBENCH_PARAM_DOUBLE, "1.425e-3", 1e-5, 1, "",
+                  "noise_model: depth σ per z², 1/m (Kinect v1: 1.425e-3, Khoshelham & Elberink 2012)"},
+                 {"pixel_noise", VOBENCH_PARAM_DOUBLE, "0.25", 0.01, 10, "", "noise_model: σ of a tracked feature's position, px"},
+                 {"depth_interpolation", VOBENCH_PARAM_BOOL, "true", 0, 0, "",
+                  "depth at a feature's sub-pixel position (bilinear, where the 3×3 neighbourhood is smooth), not the nearest pixel's"},
                  {"min_inlier_ratio", VOBENCH_PARAM_DOUBLE, "0.25", 0, 1, "", "below this inlier ratio the frame is lost"},
                  {"min_inliers", VOBENCH_PARAM_INT, "10", 3, 10000, "", "below this inlier count the frame is lost"},
                  {"depth_min", VOBENCH_PARAM_DOUBLE, "0.1", 0, 100, "", "depth accepted from, m"},
@@ -96,9 +106,13 @@ public:
         ransac_.probability = p.get_double("ransac_probability");
         ransac_.max_iterations = static_cast<int>(p.get_int("ransac_max_iterations"));
         ransac_.depth_weighted_refinement = p.get_bool("depth_weighting");
+        noise_refinement_ = p.get_string("refinement") == "noise_model";
+        noise_.axial_per_z2 = p.get_double("depth_noise");
+        noise_.lateral_px = p.get_double("pixel_noise");
+        noise_.focal_px = camera.fx;
         min_inlier_ratio_ = p.get_double("min_inlier_ratio");
         min_inliers_ = static_cast<int>(p.get_int("min_inliers"));
-        depth_range_ = {p.get_double("depth_min"), p.get_double("depth_max")};
+        depth_range_ = {p.get_double("depth_min"), p.get_double("depth_max"), p.get_bool("depth_interpolation")};
         max_translation_ = p.get_double("max_translation");
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
@@ -106,6 +120,8 @@ public:
             flow_prior_ = false;
             lk_fb_threshold_ = 0;
             ransac_.depth_weighted_refinement = false;
+            noise_refinement_ = false;
+            depth_range_.interpolate = false;
         }
         rng_.seed(seed);
         reset();
@@ -190,6 +206,15 @@ private:
             cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, 0, quick, cv::OPTFLOW_USE_INITIAL_FLOW);
         }
         std::size_t kept = 0;
+        if (lk_fb_threshold_ > 0) {  // the tracker's precision, frame by frame (the basis of pixel_noise)
+            std::vector<double> fb;
+            for (std::size_t i = 0; i < tracked_.size(); ++i)
+                if (ok[i] && back_ok[i]) fb.push_back(cv::norm(back[i] - from[i]));
+            if (!fb.empty()) {
+                std::nth_element(fb.begin(), fb.begin() + static_cast<long>(fb.size() / 2), fb.end());
+                host().counter("fb_median_px", fb[fb.size() / 2]);
+            }
+        }
         for (std::size_t i = 0; i < tracked_.size(); ++i) {
             if (!ok[i] || to[i].x < 0 || to[i].y < 0 || to[i].x >= gray_.cols || to[i].y >= gray_.rows) continue;
             if (lk_fb_threshold_ > 0 && (!back_ok[i] || cv::norm(back[i] - from[i]) > lk_fb_threshold_)) continue;
@@ -240,6 +265,15 @@ private:
         if (r.transform.translation().norm() > max_translation_ || Eigen::AngleAxisd(r.transform.linear()).angle() > max_rotation_)
             return false;
         keyframe_from_current = r.transform;
+        if (noise_refinement_) {
+            const vobench::rigid::GatedRefinement refined = vobench::rigid::refine_gated(from, to, r.inliers, noise_, r.transform);
+            // Kept only while plausible and close to the consensus it started from.
+            if (refined.ok && refined.transform.translation().norm() <= max_translation_ &&
+                (refined.transform.translation() - r.transform.translation()).norm() < 0.5 * ransac_.inlier_threshold_m) {
+                keyframe_from_current = refined.transform;
+                host().counter("inliers", static_cast<double>(refined.inliers.size()));
+            }
+        }
         return true;
     }
 
@@ -313,11 +347,12 @@ private:
     int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
-    bool estimate_every_frame_ = true, flow_prior_ = true;
+    bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true;
     cv::Point2f median_flow_{0, 0};
     cv::Size lk_window_{7, 7};
     cv::TermCriteria lk_criteria_;
     vobench::rigid::RansacOptions ransac_;
+    vobench::rigid::PointNoise noise_;
     std::mt19937_64 rng_;
 
     bool have_keyframe_ = false;
