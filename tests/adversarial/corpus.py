@@ -270,6 +270,45 @@ def synth_inputs(args, w):
     broken("a hostile list line", lambda b: write(os.path.join(b, "rgb.txt"), HOSTILE + "\n"), r"rgb\.txt:1")
 
 
+def plot_inputs(args, w):
+    """`vobench plot`'s inputs (issue #18): trajectory files of any format, legend labels and the figure
+    name. A hostile label is drawn as text and runs nothing; a broken file, a figure name that cannot be
+    quoted and an estimate that cannot be aligned are refused (exit 1) naming the file or the option."""
+    d = os.path.join(w, "plot_inputs")
+    shutil.rmtree(d, ignore_errors=True)
+    os.makedirs(d)
+    gt = os.path.join(d, "gt.txt")
+    write(gt, "".join(f"{0.1 * k:.1f} {0.1 * k} {0.02 * k * k} 0 0 0 0 1\n" for k in range(20)))
+    est = os.path.join(d, "est.txt")
+    write(est, "".join(f"{0.1 * k:.1f} {0.1 * k + 1} {0.02 * k * k} 0.5 0 0 0 1\n" for k in range(20)))
+    r = run([args.vobench, "plot", "--ref", gt, est, "--label", HOSTILE, "--out", os.path.join(d, "hostile.png")], cwd=d)
+    pwned = [f for dp, _, fs in os.walk(d) for f in fs if f.startswith("PWNED")]
+    drawn = os.path.exists(os.path.join(d, "hostile.png"))
+    check("plot: a hostile legend label is drawn as text, nothing runs", r.returncode == 0 and drawn and not pwned,
+          f"rc {r.returncode} drawn {drawn} pwned {pwned} {r.stderr[-300:]}")
+
+    def refused(name, cmd, pattern):
+        r = run([args.vobench, "plot"] + cmd, timeout=120)
+        ok = r.returncode == 1 and re.search(pattern, r.stderr) is not None
+        check(f"plot: {name} is refused naming its cause", ok, f"rc {r.returncode}: {r.stderr[-500:]}")
+
+    nan = os.path.join(d, "nan.txt")
+    write(nan, "0 0 0 0 0 0 0 1\n0.1 nan 0 0 0 0 0 1\n")
+    refused("a trajectory with a NaN", ["--ref", gt, nan, "--out", os.path.join(d, "f.png")], re.escape(nan) + r":2: ")
+    binary = os.path.join(d, "binary.txt")
+    open(binary, "wb").write(bytes(range(256)) * 16)
+    refused("a binary trajectory file", ["--ref", gt, binary, "--out", os.path.join(d, "f.png")], re.escape(binary))
+    far = os.path.join(d, "far.txt")
+    write(far, "".join(f"{500 + 0.1 * k:.1f} {k} 0 0 0 0 0 1\n" for k in range(5)))
+    refused("an estimate with no stamp near the reference's", ["--ref", gt, far, "--out", os.path.join(d, "f.png")],
+            r"far\.txt: cannot be aligned to gt\.txt")
+    refused("a figure name with quotes and a newline", ["--ref", gt, est, "--out", os.path.join(d, "x'\n`touch PWNED_n`.png")],
+            r"plain file name")
+    refused("a figure that is not PNG, SVG or PDF", ["--ref", gt, est, "--out", os.path.join(d, "f.gif")], r"\.png, \.svg or \.pdf")
+    refused("a TUM file read as KITTI (8 numbers a line)", ["--ref", gt, gt, "--format", "kitti", "--out", os.path.join(d, "f.png")],
+            re.escape(gt) + r":1: ")
+
+
 def corpus_plugin(args, kind, fault):
     return os.path.join(args.plugins, f"corpus_{kind}_{fault}.so")
 
@@ -880,7 +919,7 @@ def main():
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
     for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, open3d_params,
-                    synth_inputs, lock_and_cli, schemas):
+                    synth_inputs, plot_inputs, lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)

@@ -11,17 +11,19 @@
 #include <iostream>
 
 namespace vobench::cli {
-namespace {
 
-metrics::Trajectory load(const std::string& path, const std::string& format, const std::string& cim, bool tum_scripts) {
+metrics::Trajectory load_trajectory_file(const std::string& path, const std::string& format, const std::string& camera_in_marker,
+                                         bool tum_scripts) {
     metrics::ReadOptions options;
     options.format = metrics::parse_trajectory_format(format);
     options.tum_scripts = tum_scripts;
-    if (!cim.empty()) options.camera_in_marker = metrics::read_camera_in_marker(cim);
+    if (!camera_in_marker.empty()) options.camera_in_marker = metrics::read_camera_in_marker(camera_in_marker);
     metrics::ReadResult r = metrics::read_trajectory(path, options);
     for (const std::string& w : r.warnings) spdlog::warn("{}", w);
     return std::move(r.poses);
 }
+
+namespace {
 
 void print_stats(const char* title, const metrics::ErrorStats& s, const char* unit) {
     std::cout << fmt::format("{:<24} rmse {:.6f} {u}  mean {:.6f}  median {:.6f}  std {:.6f}  min {:.6f}  max {:.6f}  ({} pairs)\n", title,
@@ -46,8 +48,8 @@ void add_eval_command(CLI::App& app, int& exit_code) {
     c->callback([&exit_code] {
         const metrics::Protocol p = protocol.build();
         const bool tum = p.name == metrics::ProtocolName::TumScripts;
-        const metrics::Trajectory g = load(gt, gt_format, gt_cim, tum);
-        const metrics::Trajectory e = load(est, est_format, est_cim, tum);
+        const metrics::Trajectory g = load_trajectory_file(gt, gt_format, gt_cim, tum);
+        const metrics::Trajectory e = load_trajectory_file(est, est_format, est_cim, tum);
         const metrics::Evaluation ev = metrics::evaluate(g, e, p);
         if (json) {
             std::cout << json_text(metrics::evaluation_json(ev)) << std::endl;
@@ -76,7 +78,7 @@ void add_traj_command(CLI::App& app, int& exit_code) {
     stats->add_option("--rate", rate, "Frame rate: duration = (poses - 1) / rate");
     stats->add_flag("--json", json, "Print JSON");
     stats->callback([&exit_code] {
-        const metrics::Trajectory t = load(file, format, cim, false);
+        const metrics::Trajectory t = load_trajectory_file(file, format, cim, false);
         const metrics::TrajectoryStats s = metrics::compute_trajectory_stats(t, rate > 0 ? std::optional<double>(rate) : std::nullopt);
         if (json) {
             nlohmann::json j = s;

@@ -77,6 +77,7 @@ int main(int argc, char** argv) {
     vobench::cli::add_track_command(app, exit_code);
     vobench::cli::add_eval_command(app, exit_code);
     vobench::cli::add_traj_command(app, exit_code);
+    vobench::cli::add_plot_command(app, exit_code);
     vobench::cli::add_data_command(app, exit_code);
     // Listed here for --help; forwarded to vobench-worker before parsing (forwards_to_worker).
     app.add_subcommand("synth", "Render a synthetic Kinect v1/v2 RGB-D sequence with ground truth (`vobench synth --help`)")

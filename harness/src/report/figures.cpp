@@ -1,5 +1,7 @@
 #include "report/figures.hpp"
 
+#include "report/gnuplot.hpp"
+
 #include "metrics/trajectory_io.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
@@ -9,81 +11,18 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <atomic>
-#include <cerrno>
 #include <cmath>
-#include <cstdlib>
-#include <cstring>
 #include <map>
 #include <set>
 #include <sstream>
 #include <thread>
 #include <tuple>
 
-extern char** environ;
-
 namespace vobench {
 namespace fs = std::filesystem;
 
 namespace {
-
-// Draws the figure in three formats from one plot body. `noenhanced`: names with _ or ^ print as written.
-std::string script(const std::string& stem, const std::string& setup, const std::string& plot, int width, int height) {
-    return fmt::format(
-        "# {0}: written by vobench; edit and run `gnuplot {0}.gp` in this folder to restyle.\n"
-        "set encoding utf8\n{1}\n"
-        "set terminal pngcairo noenhanced size {2},{3} font 'Sans,10'\nset output '{0}.png'\n{4}\n"
-        "set terminal svg noenhanced size {2},{3} font 'Sans,10'\nset output '{0}.svg'\n{4}\n"
-        "set terminal pdfcairo noenhanced size {5:.2f}in,{6:.2f}in font 'Sans,8'\nset output '{0}.pdf'\n{4}\nunset output\n",
-        stem, setup, width, height, plot, width / 100.0, height / 100.0);
-}
-
-// Looked up on PATH, as posix_spawnp will.
-bool have_gnuplot() {
-    static const bool found = [] {
-        const char* path = std::getenv("PATH");
-        std::istringstream dirs(path ? path : "/usr/bin:/bin");
-        for (std::string dir; std::getline(dirs, dir, ':');)
-            if (!dir.empty() && ::access((dir + "/gnuplot").c_str(), X_OK) == 0) return true;
-        return false;
-    }();
-    return found;
-}
-
-bool run_gnuplot(const fs::path& folder, const std::string& stem) {
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addchdir_np(&actions, folder.c_str());
-    posix_spawn_file_actions_addopen(&actions, STDOUT_FILENO, (stem + ".log").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&actions, STDOUT_FILENO, STDERR_FILENO);
-    std::string exe = "gnuplot", script_name = stem + ".gp";
-    char* argv[] = {exe.data(), script_name.data(), nullptr};
-    pid_t pid = 0;
-    const int rc = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
-    posix_spawn_file_actions_destroy(&actions);
-    if (rc != 0) return false;
-    int status = 0;
-    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
-    const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0 && fs::exists(folder / (stem + ".png"));
-    if (ok)
-        fs::remove(folder / (stem + ".log"));
-    else
-        spdlog::warn("gnuplot failed on {}: see {}", (folder / (stem + ".gp")).string(), (folder / (stem + ".log")).string());
-    return ok;
-}
-
-// A label in a gnuplot data file: double-quoted, and gnuplot reads no escapes there, so a quote in
-// the name becomes an apostrophe.
-std::string data_label(const std::string& text) {
-    std::string label = clean_text(text);
-    for (char& c : label)
-        if (c == '"') c = '\'';
-    return "\"" + label + "\"";
-}
 
 const RunRecord* first_ok(const RunGroup* g) {
     if (!g) return nullptr;
@@ -100,12 +39,12 @@ void emit(std::vector<Figure>& out, const fs::path& folder, Figure f, const std:
 
 // One gnuplot per figure, as many at once as there are cores.
 void draw_all(std::vector<Figure>& figures, const fs::path& folder) {
-    if (!have_gnuplot()) return;
+    if (!gnuplot::available()) return;
     std::atomic<std::size_t> next{0};
     std::vector<std::thread> pool;
     for (unsigned k = 0; k < std::max(1u, std::thread::hardware_concurrency()); ++k)
         pool.emplace_back([&] {
-            for (std::size_t i; (i = next++) < figures.size();) figures[i].drawn = run_gnuplot(folder, figures[i].stem);
+            for (std::size_t i; (i = next++) < figures.size();) figures[i].drawn = gnuplot::run(folder, figures[i].stem);
         });
     for (std::thread& t : pool) t.join();
 }
@@ -189,7 +128,7 @@ void degradation_figures(const std::vector<RunGroup>& groups, const fs::path& fo
         const std::string plot =
             fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
                         gnuplot_quoted(f.title + " (mean ± std over cells)"), ate_plot, rpe_plot);
-        emit(figures, folder, f, data, script(f.stem, setup, plot, 1100, 560));
+        emit(figures, folder, f, data, gnuplot::script(f.stem, setup, plot, 1100, 560));
     }
 }
 
@@ -197,7 +136,7 @@ void degradation_figures(const std::vector<RunGroup>& groups, const fs::path& fo
 
 std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
     fs::create_directories(folder);
-    if (!have_gnuplot())
+    if (!gnuplot::available())
         spdlog::warn("gnuplot is not installed: figure data and scripts are written, not the images (apt-get install gnuplot-nox)");
     std::vector<Figure> figures;
     for (const std::string& entry : entries_of(groups)) {
@@ -222,7 +161,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
             const std::string setup =
                 fmt::format("set title {}\nset xlabel 'time [s]'\nset ylabel 'translational RPE [m]'\nset grid\nset key top left",
                             gnuplot_quoted(f.title));
-            emit(figures, folder, f, data, script(f.stem, setup, plot, 800, 400));
+            emit(figures, folder, f, data, gnuplot::script(f.stem, setup, plot, 800, 400));
         }
         // Fig. 13: the path from above, coloured by the ATE residual; the two axes of largest extent.
         for (const RunGroup& g : groups) {
@@ -261,7 +200,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 "plot '{0}.dat' using 1:2 with lines lc rgb '#444444' lw 2 title 'ground truth', "
                 "'{0}.dat' using 3:4:5 with points pt 7 ps 0.6 palette title 'estimate (aligned)'",
                 f.stem);
-            emit(figures, folder, f, data, script(f.stem, setup, plot, 700, 600));
+            emit(figures, folder, f, data, gnuplot::script(f.stem, setup, plot, 700, 600));
         }
         // Fig. 14: bars per sequence and sensor.
         std::string data = "# sequence";
@@ -269,7 +208,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         data += "\n";
         bool any = false;
         for (const std::string& row : rows_of(groups, entry)) {
-            data += data_label(row);
+            data += gnuplot::data_label(row);
             for (const std::string& s : sensors) {
                 const RunGroup* g = find_group(groups, entry, row, s);
                 const auto ate = g ? summarize(*g, "ate.rmse") : std::nullopt;
@@ -295,7 +234,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         const std::string plot =
             fmt::format("set multiplot layout 1,2 title {}\nset ylabel 'ATE RMSE [m]'\n{}\nset ylabel 'RPE RMSE [m]'\n{}\nunset multiplot",
                         gnuplot_quoted(f.title), ate_plot, rpe_plot);
-        emit(figures, folder, f, data, script(f.stem, setup, plot, 1000, 420));
+        emit(figures, folder, f, data, gnuplot::script(f.stem, setup, plot, 1000, 420));
     }
     degradation_figures(groups, folder, figures);
     draw_all(figures, folder);
