@@ -122,13 +122,13 @@ TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, 
                       : !estimates.empty() && !estimates.front().poses.empty() ? estimates.front().poses.front().t
                                                                                : 0.0;
     if (reference) {
-        PlottedTrajectory line{reference->label, reference->poses.size(), 0, -1, {}};
+        PlottedTrajectory line{reference->label, reference->poses.size(), 0, -1, {}, ""};
         data += block(reference->label, rows_of(reference->poses, line.alignment, t0));
         titles.push_back(legend(line, true, options.alignment));
         plot.lines.push_back(line);
     }
     for (const PlotInput& e : estimates) {
-        PlottedTrajectory line{e.label, e.poses.size(), 0, -1, {}};
+        PlottedTrajectory line{e.label, e.poses.size(), 0, -1, {}, ""};
         if (reference) {
             metrics::AteOptions ate;
             ate.association = options.association;
