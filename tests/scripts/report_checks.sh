@@ -45,6 +45,23 @@ for f in 'rpe_put_vo_sim-v1-[0-9a-f]{8}\.' 'traj_put_vo_sim-v1-[0-9a-f]{8}\.' 'b
 done
 bars=$(ls out/figures/ | grep -E '^bars_put_vo-[0-9a-f]{8}\.gp$' | sed 's/\.gp$//')
 for ext in png svg pdf dat gp; do test -s "out/figures/$bars.$ext"; done
+# The comparison figures: every entry on one scale, a mean and a 95 % interval per entry and sensor.
+for m in ate.rmse rpe.trans.rmse rpe.rot.rmse ms_per_frame; do
+  stem=$(ls out/figures/ | grep -E "^compare_$(echo $m | tr . _ )-[0-9a-f]{8}\.gp$|^compare_${m}-[0-9a-f]{8}\.gp$" | sed 's/\.gp$//' | head -1)
+  [ -n "$stem" ] || { echo "FAIL: no comparison figure for $m"; ls out/figures; exit 1; }
+  for ext in png svg pdf dat gp; do test -s "out/figures/$stem.$ext"; done
+  # one data row per entry, each with mean <= ... the interval bounds around the mean
+  /usr/bin/python3 - "out/figures/$stem.dat" <<'PY'
+import sys, math
+rows = [l.split('"')[2].split() for l in open(sys.argv[1]) if l.startswith('"')]
+assert rows, "no entry rows"
+for r in rows:
+    for k in range(0, len(r), 4):
+        mean, lo, hi = (float(x) for x in r[k:k + 3])
+        if math.isnan(mean): continue
+        assert lo <= mean + 1e-12 and mean <= hi + 1e-12, (mean, lo, hi)
+PY
+done
 
 echo "== report.html in headless Chromium"
 if ! command -v chromium > /dev/null; then echo "chromium is not installed (apt-get install chromium): skipped"; exit 77; fi

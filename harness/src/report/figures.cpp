@@ -1,5 +1,6 @@
 #include "report/figures.hpp"
 
+#include "report/comparison_figures.hpp"
 #include "report/gnuplot.hpp"
 
 #include "metrics/trajectory_io.hpp"
@@ -237,6 +238,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         emit(figures, folder, f, data, gnuplot::script(f.stem, setup, plot, 1000, 420));
     }
     degradation_figures(groups, folder, figures);
+    for (Figure& f : write_comparison_figures(groups, folder)) figures.push_back(std::move(f));
     draw_all(figures, folder);
     return figures;
 }

@@ -4,6 +4,7 @@
 //   traj_<entry>_<sequence>_<sensor>.*  estimate (aligned) and ground truth from above, coloured by
 //                              the ATE residual (Fig. 13)
 //   bars_<entry>.*             ATE and RPE RMSE per sequence and sensor (Fig. 14)
+//   compare_<metric>.*         every entry side by side on one scale (report/comparison_figures.hpp)
 // Every name that came from a config or plugin reaches a file name only through file_stem() (a slug
 // plus a hash, so two entries never share a figure) and a script only through gnuplot_quoted().
 #pragma once
@@ -17,7 +18,7 @@
 namespace vobench {
 
 struct Figure {
-    std::string kind;  // "rpe", "traj", "bars"
+    std::string kind;  // "rpe", "traj", "bars", "compare", "degradation"
     std::string title;
     std::string stem;    // figures/<stem>.{png,svg,pdf,dat,gp}
     bool drawn = false;  // gnuplot ran and wrote the PNG

@@ -201,11 +201,11 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
          (ctx.timing_text.empty() ? std::string() : "<p id=\"timing-protocol\">" + html_text(ctx.timing_text) + "</p>\n") +
          timing_table(groups);
     h += "<h2>Figures</h2>\n";
-    // The page stays loadable for large sweeps: summary figures (bars, RPE over time) first, then the
+    // The page stays loadable for large sweeps: summary figures (entries compared, bars, RPE over time) first, then the
     // per-cell trajectories, at most kMaxEmbedded in all; every figure is in figures/ regardless.
     constexpr std::size_t kMaxEmbedded = 60;
     std::vector<const Figure*> order;
-    for (const char* kind : {"degradation", "bars", "rpe", "traj"})
+    for (const char* kind : {"compare", "degradation", "bars", "rpe", "traj"})
         for (const Figure& f : figures)
             if (f.drawn && f.kind == kind) order.push_back(&f);
     if (order.size() > kMaxEmbedded)

@@ -1,0 +1,21 @@
+// comparison_figures.hpp — a sweep's entries side by side (issue #18): one figure per ranked metric
+// (ATE RMSE, RPE RMSE translation and rotation, ms per frame), every entry on one shared scale, a bar
+// per entry and sensor — the mean over that entry's successful cells on that sensor (all sequences
+// and repeats) — with the 95 % percentile-bootstrap interval of the mean (report/bootstrap.hpp, the
+// leaderboard's method), Okabe & Ito's colour-blind-safe colours, the unit on the axis, and a legend
+// only when there is more than one sensor to tell apart.
+//   compare_<metric>.{png,svg,pdf,dat,gp}
+#pragma once
+
+#include "report/aggregate.hpp"
+#include "report/figures.hpp"
+
+#include <filesystem>
+#include <vector>
+
+namespace vobench {
+
+// Writes data and scripts under `folder`; drawing is the caller's (figures.cpp draws all at once).
+std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups, const std::filesystem::path& folder);
+
+}  // namespace vobench
