@@ -10,8 +10,8 @@
 // estimation) and counters reported per frame. Parameters and their defaults: README.md.
 #include "dbscan.hpp"
 #include "grid_detector.hpp"
-#include "rgbd_frame.hpp"  // plugins/common
-#include "rigid_ransac.hpp"
+#include "rgbd_frame.hpp"    // plugins/common
+#include "rigid_ransac.hpp"  // plugins/common
 #include "rigid_refine.hpp"  // plugins/common
 
 #include <vobench/plugin.hpp>
@@ -39,9 +39,8 @@ public:
                 "MIT",
                 "https://doi.org/10.1007/s00138-016-0802-6",
                 {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper",
-                  "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold and depth_weighting off, "
-                  "refinement umeyama, "
-                  "whatever they are set to)"},
+                  "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold, depth_weighting and "
+                  "depth_interpolation off, refinement=umeyama, whatever they are set to)"},
                  {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
                  {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
