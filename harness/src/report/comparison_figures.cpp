@@ -15,7 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const char* const kColours[] = {"#0072B2", "#E69F00", "#009E73", "#D55E00", "#56B4E9", "#CC79A7", "#F0E442"};
 const char* const kCompared[] = {"ate.rmse", "rpe.trans.rmse", "rpe.rot.rmse", "ms_per_frame"};
 
 // The catalogue's titles are for tables with a unit column ("RPE RMSE" twice); a figure says which.
@@ -78,7 +77,7 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
         std::string plot;
         for (std::size_t k = 0; k < sensors.size(); ++k)
             plot += fmt::format("{}'{}.dat' using {}:{}:{}:xtic(1) lc rgb '{}' {}", k ? ", " : "plot ", f.stem, 2 + 4 * k, 3 + 4 * k,
-                                4 + 4 * k, kColours[k % 7],
+                                4 + 4 * k, gnuplot::colour(k),
                                 sensors.size() > 1 ? "title " + gnuplot_quoted(sensor_title(sensors[k])) : std::string("notitle"));
         // One scale for every entry: linear, unless the means span more than 20× (a baseline that
         // does not track beside ones that do), when a linear axis would flatten the good entries.

@@ -72,4 +72,9 @@ std::string data_label(const std::string& text) {
     return "\"" + label + "\"";
 }
 
+const char* colour(std::size_t k) {
+    static const char* const palette[] = {"#0072B2", "#E69F00", "#009E73", "#D55E00", "#56B4E9", "#CC79A7", "#F0E442"};
+    return palette[k % (sizeof palette / sizeof palette[0])];
+}
+
 }  // namespace vobench::gnuplot

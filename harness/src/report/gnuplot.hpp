@@ -4,6 +4,7 @@
 // `vobench plot`.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 
@@ -14,6 +15,10 @@ namespace vobench::gnuplot {
 std::string script(const std::string& stem, const std::string& setup, const std::string& plot, int width, int height);
 
 bool available();
+
+// Okabe & Ito's colour-blind-safe palette (2008), black left out (it marks references): the colour of
+// the k-th line or bar is colour(k).
+const char* colour(std::size_t k);
 
 // Runs `gnuplot <stem>.gp` in `folder`; true when it succeeded and wrote <stem>.png. On failure its
 // output stays in <stem>.log and a warning names it.

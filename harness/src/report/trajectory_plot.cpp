@@ -17,9 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Okabe & Ito's colour-blind-safe palette (black kept for the reference).
-const char* const kColours[] = {"#E69F00", "#56B4E9", "#009E73", "#D55E00", "#0072B2", "#CC79A7", "#F0E442"};
-
 struct Row {
     double t;
     Eigen::Vector3d p, rpy_deg;
@@ -65,7 +62,7 @@ std::string panel(const std::string& stem, const std::vector<std::string>& title
     for (std::size_t k = 0; k < titles.size(); ++k) {
         const bool ref = with_reference && k == 0;
         const std::string style =
-            ref ? "lc rgb '#000000' dt 2 lw 1.5" : fmt::format("lc rgb '{}' lw 1.5", kColours[(k - (with_reference ? 1 : 0)) % 7]);
+            ref ? "lc rgb '#000000' dt 2 lw 1.5" : fmt::format("lc rgb '{}' lw 1.5", gnuplot::colour(k - (with_reference ? 1 : 0)));
         cmd += fmt::format("{}'{}.dat' index {} using {} with lines {} {}", k ? ", " : "", stem, k, columns, style,
                            keys ? "title " + gnuplot_quoted(titles[k]) : std::string("notitle"));
     }
