@@ -63,6 +63,12 @@ for r in rows:
 PY
 done
 
+# RPE over time across entries: one figure per sequence and sensor that two or more entries ran.
+entries=$(/usr/bin/python3 -c 'import json; print(len(json.load(open("out/leaderboard.json"))["entries"]))')
+if [ "$entries" -ge 2 ]; then
+  ls out/figures/ | grep -Eq '^rpe_over_time_.*-[0-9a-f]{8}\.png$' || { echo "FAIL: no RPE-over-time comparison"; ls out/figures; exit 1; }
+fi
+
 echo "== report.html in headless Chromium"
 if ! command -v chromium > /dev/null; then echo "chromium is not installed (apt-get install chromium): skipped"; exit 77; fi
 grep -q "https\?://" out/report.html && { echo "FAIL: report.html refers to the network"; grep -o "https\?://[^\"' ]*" out/report.html | head; exit 1; }

@@ -26,6 +26,58 @@ std::string what_of(const metrics::MetricInfo& m) {
 
 std::string axis_title(const metrics::MetricInfo& m) { return fmt::format("{} [{}]", what_of(m), m.unit == "deg" ? "°" : m.unit); }
 
+// RPE over time of the best entries on one sequence and sensor: translation and rotation, one line an
+// entry (its first successful cell), the entries ranked by their mean ATE RMSE there.
+constexpr std::size_t kTopEntries = 5;
+
+void rpe_over_time(const std::vector<RunGroup>& groups, const std::vector<std::string>& entries, const std::string& row,
+                   const std::string& sensor, const fs::path& folder, std::vector<Figure>& out) {
+    struct Candidate {
+        double ate;
+        std::string entry;
+        const RunRecord* run;
+    };
+    std::vector<Candidate> candidates;
+    for (const std::string& e : entries) {
+        const RunGroup* g = find_group(groups, e, row, sensor);
+        if (!g) continue;
+        const auto ate = summarize(*g, "ate.rmse");
+        for (const RunRecord* r : g->runs)
+            if (r->ok && r->evaluation && r->evaluation->rpe && !r->evaluation->rpe->pairs.empty()) {
+                candidates.push_back({ate ? ate->mean : 1e300, e, r});
+                break;
+            }
+    }
+    if (candidates.size() < 2) return;  // one entry: its own figure (rpe_<entry>_…) already shows it
+    std::stable_sort(candidates.begin(), candidates.end(), [](const Candidate& a, const Candidate& b) { return a.ate < b.ate; });
+    if (candidates.size() > kTopEntries) candidates.resize(kTopEntries);
+    Figure f{"rpe_over_time",
+             fmt::format("RPE over time on {} ({}) — the {} entries of lowest ATE", row, sensor_title(sensor), candidates.size()),
+             file_stem({"rpe_over_time", row, sensor}), false};
+    std::string data, trans, rot;
+    for (std::size_t k = 0; k < candidates.size(); ++k) {
+        const auto& pairs = candidates[k].run->evaluation->rpe->pairs;
+        data += fmt::format("# {} (cell {})\n# t_s rpe_trans_m rpe_rot_deg\n", clean_text(candidates[k].entry),
+                            clean_text(candidates[k].run->cell.id));
+        for (const auto& p : pairs)
+            data += fmt::format("{:.9f} {:.17g} {:.17g}\n", p.t_first - pairs.front().t_first, p.trans_m, p.rot_deg);
+        data += "\n\n";
+        const std::string style = fmt::format("with lines lw 1.5 lc rgb '{}'", gnuplot::colour(k));
+        // The legend once, beside the upper panel.
+        trans += fmt::format("{}'{}.dat' index {} using 1:2 {} title {}", k ? ", " : "plot ", f.stem, k, style,
+                             gnuplot_quoted(candidates[k].entry));
+        rot += fmt::format("{}'{}.dat' index {} using 1:3 {} notitle", k ? ", " : "plot ", f.stem, k, style);
+    }
+    const std::string setup = "set grid\nset key outside right top vertical Left reverse noenhanced\nset xlabel 'time [s]'";
+    const std::string plot = fmt::format(
+        "set multiplot layout 2,1 title {}\nset ylabel 'translational RPE [m]'\n{}\n"
+        "set ylabel 'rotational RPE [°]'\n{}\nunset multiplot",
+        gnuplot_quoted(f.title), trans, rot);
+    write_file_atomic(folder / (f.stem + ".dat"), data);
+    write_file_atomic(folder / (f.stem + ".gp"), gnuplot::script(f.stem, setup, plot, 1100, 700));
+    out.push_back(f);
+}
+
 }  // namespace
 
 std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
@@ -94,6 +146,11 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
         write_file_atomic(folder / (f.stem + ".gp"), gnuplot::script(f.stem, setup, plot, width, 520));
         out.push_back(f);
     }
+    std::vector<std::string> rows;
+    for (const RunGroup& g : groups)
+        if (std::find(rows.begin(), rows.end(), g.row_label()) == rows.end()) rows.push_back(g.row_label());
+    for (const std::string& row : rows)
+        for (const std::string& s : sensors) rpe_over_time(groups, entries, row, s, folder, out);
     return out;
 }
 

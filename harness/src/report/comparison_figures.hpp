@@ -5,6 +5,9 @@
 // leaderboard's method), Okabe & Ito's colour-blind-safe colours, the unit on the axis, and a legend
 // only when there is more than one sensor to tell apart.
 //   compare_<metric>.{png,svg,pdf,dat,gp}
+// and, per sequence and sensor with two or more entries, translational and rotational RPE over time of
+// the (at most five) entries with the lowest mean ATE there, on one plot:
+//   rpe_over_time_<sequence>_<sensor>.*
 #pragma once
 
 #include "report/aggregate.hpp"
