@@ -1,5 +1,6 @@
 #include "png_decode.hpp"
 
+#include "dataset_files.hpp"
 #include "png_raster.hpp"
 
 #include <vobench/plugin.hpp>
@@ -7,40 +8,22 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include <cstring>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
 
 namespace vobench::files {
-namespace {
-
-using sdk::Error;
-
-std::vector<uint8_t> read_bytes(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot open");
-    in.seekg(0, std::ios::end);
-    const std::streamoff size = in.tellg();
-    if (size < 0) throw Error(VOBENCH_IO_ERROR, path.string() + ": cannot read its size");
-    std::vector<uint8_t> bytes(static_cast<std::size_t>(size));
-    in.seekg(0);
-    if (!in.read(reinterpret_cast<char*>(bytes.data()), size)) throw Error(VOBENCH_IO_ERROR, path.string() + ": read error");
-    return bytes;
-}
-
-}  // namespace
 
 cv::Mat decode_png(const std::filesystem::path& path, int imread_flags) {
-    const std::vector<uint8_t> bytes = read_bytes(path);
+    const std::string file = read_text(path);  // opened in binary mode: the bytes as they are
+    const auto* bytes = reinterpret_cast<const uint8_t*>(file.data());
     // Bytes 24 and 25 are IHDR's bit depth and colour type: kinds this path does not convert are not inflated.
-    if (bytes.size() < 26) return {};
+    if (file.size() < 26) return {};
     const int bit_depth = bytes[24], color_type = bytes[25];
     const bool colour = imread_flags == cv::IMREAD_COLOR && bit_depth == 8 && color_type != 3;
     const bool depth16 = imread_flags == cv::IMREAD_UNCHANGED && bit_depth == 16 && color_type == 0;
     if (!colour && !depth16) return {};
-    const std::optional<PngRaster> raster = decode_png_raster(bytes.data(), bytes.size());
+    const std::optional<PngRaster> raster = decode_png_raster(bytes, file.size());
     if (!raster) return {};
     const PngRaster& r = *raster;
     const int rows = static_cast<int>(r.height), cols = static_cast<int>(r.width);

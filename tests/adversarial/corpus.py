@@ -198,6 +198,29 @@ def open3d_params(args, w):
     expect_rows("open3d", out, {k: p for k, (_, p) in values.items()})
 
 
+def put_vo_params(args, w):
+    """put_vo's noise-model parameters (issue #19): a value outside its declared range, not a number or
+    not in the enumeration refuses the config before any cell runs, naming file:line:column, plugin and
+    parameter; the healthy value runs."""
+    values = {"healthy": ({"pixel_noise": "0.25"}, None),
+              "pixel_noise_zero": ({"pixel_noise": "0"}, r"parameter 'pixel_noise': '0' is outside"),
+              "depth_noise_nan": ({"depth_noise": "nan"}, r"parameter 'depth_noise': 'nan' is not a finite number"),
+              "depth_noise_huge": ({"depth_noise": "1e400"}, r"parameter 'depth_noise': '1e400' is not a finite number"),
+              "refinement_unknown": ({"refinement": "lm"}, r"parameter 'refinement': 'lm' is not one of umeyama\|noise_model"),
+              "interpolation_text": ({"depth_interpolation": "sometimes"}, r"parameter 'depth_interpolation'")}
+    for name, (params, pattern) in values.items():
+        out = os.path.join(w, "put_vo_params_" + name)
+        path = os.path.join(w, f"put_vo_params_{name}.yaml")
+        cfg = config(path, "put_vo params", out, [corpus_reader(args, w)], [{"name": name, "plugin": "put_vo", "params": params}],
+                     extra="frames: 8\n")
+        r, _ = sweep(args, cfg)
+        if pattern is None:
+            check("put_vo: the healthy noise-model parameters run", r.returncode == 0, r.stderr[-500:])
+        else:
+            ok = r.returncode != 0 and re.search(re.escape(path) + r":\d+:\d+: plugin 'put_vo', " + pattern, r.stderr) is not None
+            check(f"put_vo: {name} refuses the config naming file:line:column and the parameter", ok,
+                  f"rc {r.returncode}: {r.stderr[-400:]}")
+
 def synth_inputs(args, w):
     """`vobench synth`'s new inputs (issue #15): a camera file, a stamps folder, an effects list, and
     `synth stats` on folders that are broken. Each is refused with a message naming the file (and
@@ -919,7 +942,7 @@ def main():
     os.environ["VOBENCH_PROBE_TIMEOUT"] = "3"
     t0 = time.time()
     for section in (plugin_faults, reader_faults, data_faults, config_faults, results_faults, python_faults, filter_faults, open3d_params,
-                    synth_inputs, plot_inputs, lock_and_cli, schemas):
+                    put_vo_params, synth_inputs, plot_inputs, lock_and_cli, schemas):
         if args.only and args.only not in section.__name__:
             continue
         section(args, args.work)

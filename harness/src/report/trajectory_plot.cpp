@@ -29,7 +29,7 @@ Eigen::Vector3d roll_pitch_yaw_deg(const Eigen::Matrix3d& R) {
     return Eigen::Vector3d(roll, pitch, yaw) * (180.0 / M_PI);
 }
 
-std::vector<Row> rows_of(const metrics::Trajectory& poses, const metrics::Alignment& a, double t0) {
+std::vector<Row> plotted_rows(const metrics::Trajectory& poses, const metrics::Alignment& a, double t0) {
     std::vector<Row> rows;
     for (const metrics::StampedPose& s : poses) rows.push_back({s.t - t0, a.apply(s.p), roll_pitch_yaw_deg(a.R * s.q.toRotationMatrix())});
     return rows;
@@ -120,7 +120,7 @@ TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, 
                                                                                : 0.0;
     if (reference) {
         PlottedTrajectory line{reference->label, reference->poses.size(), 0, -1, {}, ""};
-        data += block(reference->label, rows_of(reference->poses, line.alignment, t0));
+        data += block(reference->label, plotted_rows(reference->poses, line.alignment, t0));
         titles.push_back(legend(line, true, options.alignment));
         plot.lines.push_back(line);
     }
@@ -140,7 +140,7 @@ TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, 
                 throw std::runtime_error(e.label + ": cannot be aligned to " + reference->label + ": " + ex.what());
             }
         }
-        data += block(e.label, rows_of(e.poses, line.alignment, t0));
+        data += block(e.label, plotted_rows(e.poses, line.alignment, t0));
         titles.push_back(legend(line, false, options.alignment));
         plot.lines.push_back(line);
     }
