@@ -309,6 +309,15 @@ def plot_inputs(args, w):
     drawn = os.path.exists(os.path.join(d, "hostile.png"))
     check("plot: a hostile legend label is drawn as text, nothing runs", r.returncode == 0 and drawn and not pwned,
           f"rc {r.returncode} drawn {drawn} pwned {pwned} {r.stderr[-300:]}")
+    # The interactive page: the label is a \u-escaped string in the data island and the <title>'s text.
+    page = os.path.join(d, "hostile.html")
+    r = run([args.vobench, "plot", "--ref", gt, est, "--label", HOSTILE, "--out", page], cwd=d)
+    html = open(page, encoding="utf-8").read() if os.path.exists(page) else ""
+    island = html.split('id="vobench-data">', 1)[1].split("</script>", 1)[0] if "vobench-data" in html else None
+    labels = [t["label"] for t in json.loads(island)["views"][0]["tracks"]] if island else []
+    check("plot --out F.html: a hostile label stays text (no markup in the data island, three scripts, the label intact)",
+          r.returncode == 0 and island is not None and "<" not in island and html.count("<script>") == 3 and
+          any("alert(1)" in l for l in labels) and "<script>alert" not in html, f"rc {r.returncode} {r.stderr[-300:]}")
 
     def refused(name, cmd, pattern):
         r = run([args.vobench, "plot"] + cmd, timeout=120)
@@ -327,7 +336,7 @@ def plot_inputs(args, w):
             r"far\.txt: cannot be aligned to gt\.txt")
     refused("a figure name with quotes and a newline", ["--ref", gt, est, "--out", os.path.join(d, "x'\n`touch PWNED_n`.png")],
             r"plain file name")
-    refused("a figure that is not PNG, SVG or PDF", ["--ref", gt, est, "--out", os.path.join(d, "f.gif")], r"\.png, \.svg or \.pdf")
+    refused("a figure that is not PNG, SVG, PDF or HTML", ["--ref", gt, est, "--out", os.path.join(d, "f.gif")], r"\.png, \.svg, \.pdf or \.html")
     refused("a TUM file read as KITTI (8 numbers a line)", ["--ref", gt, gt, "--format", "kitti", "--out", os.path.join(d, "f.png")],
             re.escape(gt) + r":1: ")
 
@@ -533,8 +542,11 @@ def hostile_outputs(out, what):
     check(f"{what}: summary.tex runs no command but its own (\\input and \\write18 escaped)",
           commands <= allowed and all("\n" not in l for l in tex.splitlines()), commands - allowed)
     html = open(os.path.join(out, "report.html"), encoding="utf-8").read()
-    check(f"{what}: report.html carries the names as text only", html.count("<script>") == 1 and "alert(1)</script>" not in html and
-          "\u202e" not in html, "a <script> or a bidi override from a name")
+    # The page's own four scripts (CSP listener, table sorting, plotly.js, the explorer) and its data island; a
+    # name is text in the tables and a \u-escaped JSON string in the island, never markup.
+    island = html.split('<script type="application/json" id="vobench-data">', 1)[1].split("</script>", 1)[0] if "vobench-data" in html else None
+    check(f"{what}: report.html carries the names as text only", html.count("<script>") == 4 and "alert(1)</script>" not in html and
+          "\u202e" not in html and island is not None and "<" not in island and ">" not in island, "a <script> or a bidi override from a name")
     load_json(os.path.join(out, "leaderboard.json"))
     check(f"{what}: leaderboard.json is valid UTF-8 JSON", True)
     figs = os.path.join(out, "figures")
@@ -681,6 +693,50 @@ def results_faults(args, w):
     open(run_json(d, ids[1]), "wb").write(b"\xff\xfe\x00garbage" * 100)
     r = report(d)
     check("results: a binary run.json is listed, the rest reported (exit 2)", r.returncode == 2 and ids[1] in r.stdout, r.stdout[-600:])
+
+    # runs/<id>/timing.csv feeds only the page's per-cell timing panel: a broken one is named there
+    # (file:line and column) and costs nothing else; a hostile stage name stays text.
+    def timing_variant(name, mutate, pattern):
+        d = fresh(name)
+        for i in ids:
+            f = os.path.join(d, "runs", i, "timing.csv")
+            mutate(f, open(f).read().splitlines())
+        r = report(d)
+        html = open(os.path.join(d, "report.html"), encoding="utf-8").read()
+        island = html.split('id="vobench-data">', 1)[1].split("</script>", 1)[0]
+        views = json.loads(island)["views"]
+        errors = [v.get("timing_error", "") for v in views]
+        check(f"results: timing.csv {name}: reported (exit 0), every view says why its timing is missing",
+              r.returncode == 0 and views and all(re.search(pattern, e) for e in errors) and "<" not in island,
+              f"exit {r.returncode}: {errors[:2]} {r.stderr[-300:]}")
+
+    timing_variant("binary", lambda f, l: open(f, "wb").write(b"\x00\xff" * 999), r"timing\.csv:1: not a timing\.csv header")
+    def set_cell(f, l, row, column, value):  # row counts from the header (0)
+        cells = l[row].split(",")
+        cells[column] = value
+        write(f, "\n".join(l[:row] + [",".join(cells)] + l[row + 1:]) + "\n")
+
+    timing_variant("nan", lambda f, l: set_cell(f, l, 2, 2, "nan"),
+                   r"timing\.csv:3 process_ms: 'nan' is not a finite number")
+    timing_variant("extra_column", lambda f, l: write(f, "\n".join(l[:4] + [l[4] + ",7"] + l[5:]) + "\n"), r"timing\.csv:5: \d+ columns, the header has")
+    timing_variant("negative", lambda f, l: set_cell(f, l, 2, 3, "-1"),
+                   r"timing\.csv:3: a negative time")
+    timing_variant("missing", lambda f, l: os.remove(f), r"timing\.csv: cannot read")
+    timing_variant("too_large", lambda f, l: open(f, "ab").truncate(600 << 20), r"more than the \d+ a timing file may have")
+
+    # A forged header with a hostile stage name: drawn, and the name stays a \u-escaped string.
+    d = fresh("timing_hostile_stage")
+    for i in ids:
+        f = os.path.join(d, "runs", i, "timing.csv")
+        l = open(f).read().splitlines()
+        write(f, "\n".join([l[0] + ",stage_</script><script>alert(1)</script>\u2028_ms"] + [x + ",1.5" for x in l[1:]]) + "\n")
+    r = report(d)
+    html = open(os.path.join(d, "report.html"), encoding="utf-8").read()
+    island = html.split('id="vobench-data">', 1)[1].split("</script>", 1)[0]
+    stages = [s["name"] for v in json.loads(island)["views"] for s in v.get("timing", {}).get("stages", [])]
+    check("results: a timing.csv stage named </script><script>… is drawn as text (exit 0, escaped in the page)",
+          r.returncode == 0 and "<" not in island and any("alert(1)" in n for n in stages) and html.count("<script>") == 4,
+          f"exit {r.returncode}: {stages[:3]}")
 
 
 # ----- one writer per folder, listing, info, check, track ---------------------------------------------

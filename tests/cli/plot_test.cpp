@@ -6,6 +6,7 @@
 
 #include <fmt/format.h>
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <sstream>
@@ -114,6 +115,31 @@ TEST_CASE("vobench plot draws TUM, EuRoC and KITTI estimates aligned to a refere
                 for (int c = 0; c < 7; ++c) REQUIRE(std::abs(b[k][i][c] - b[0][i][c]) < 1e-6);
         }
     }
+
+    // The interactive variant: one page, its data island holding the four tracks, each estimate
+    // (positions and orientations) where the reference is, to display precision.
+    const fs::path page = dir.path() / "fig.html";
+    std::string text;
+    REQUIRE(test::run_command(base + " --out " + page.string(), text) == 0);
+    CHECK_THAT(text, Contains("Page: " + page.string()));
+    const std::string html = read(page);
+    const std::string open = "<script type=\"application/json\" id=\"vobench-data\">";
+    const std::size_t from = html.find(open);
+    REQUIRE(from != std::string::npos);
+    const auto data = nlohmann::json::parse(html.substr(from + open.size(), html.find("</script>", from) - from - open.size()));
+    CHECK(data["kind"] == "plot");
+    const auto& tracks = data["views"][0]["tracks"];
+    REQUIRE(tracks.size() == 4);
+    CHECK(tracks[0]["role"] == "reference");
+    for (std::size_t k = 1; k < 4; ++k) {
+        REQUIRE(tracks[k]["p"].size() == 180);
+        for (std::size_t i = 0; i < 180; ++i) REQUIRE(std::abs(tracks[k]["p"][i].get<double>() - tracks[0]["p"][i].get<double>()) < 2e-5);
+        for (std::size_t i = 0; i < 240; i += 4) {
+            const Eigen::Quaterniond a(tracks[k]["q"][i], tracks[k]["q"][i + 1], tracks[k]["q"][i + 2], tracks[k]["q"][i + 3]);
+            const Eigen::Quaterniond r(tracks[0]["q"][i], tracks[0]["q"][i + 1], tracks[0]["q"][i + 2], tracks[0]["q"][i + 3]);
+            REQUIRE(a.angularDistance(r) < 1e-4);
+        }
+    }
 }
 
 TEST_CASE("vobench plot refuses a figure name it cannot quote and an estimate it cannot align, by name", "[cli][plot]") {
@@ -126,7 +152,7 @@ TEST_CASE("vobench plot refuses a figure name it cannot quote and an estimate it
                             text) != 0);
     CHECK_THAT(text, Contains("plain file name"));
     CHECK(test::run_command(cli + (dir.path() / "gt.txt").string() + " --out " + (dir.path() / "fig.jpg").string() + " 2>&1", text) != 0);
-    CHECK_THAT(text, Contains(".png, .svg or .pdf"));
+    CHECK_THAT(text, Contains(".png, .svg, .pdf or .html"));
     CHECK(test::run_command(cli + (dir.path() / "far.txt").string() + " --out " + (dir.path() / "fig.png").string() + " 2>&1", text) != 0);
     CHECK_THAT(text, Contains("far.txt: cannot be aligned to gt.txt"));
     CHECK_FALSE(fs::exists(dir.path() / "fig.png"));

@@ -29,7 +29,8 @@ void add_plot_command(CLI::App& app, int& exit_code) {
     c->add_option("--label", labels, "Each estimate's legend text, in order (default: the file name)");
     c->add_option("--align", align, "se3, sim3, posyaw or none")->capture_default_str();
     c->add_option("--mode", mode, "xy, xz, xyz, rpy or speed")->capture_default_str();
-    c->add_option("--out", out, "The figure: FILE.png, .svg or .pdf (all three are written, with FILE.dat and FILE.gp)")
+    c->add_option("--out", out,
+                  "The figure: FILE.png, .svg or .pdf (all three are written, with FILE.dat and FILE.gp), or FILE.html (interactive, 3-D)")
         ->capture_default_str();
     c->add_option("--max-diff", max_diff, "Association: largest stamp difference, seconds")->capture_default_str();
     c->add_option("--offset", offset, "Association: seconds added to the estimates' stamps")->capture_default_str();
@@ -66,7 +67,10 @@ void add_plot_command(CLI::App& app, int& exit_code) {
                 std::cout << fmt::format("{}: {} poses\n", line.label, line.poses);
         }
         const std::filesystem::path stem = plot.image.parent_path() / plot.image.stem();
-        if (plot.drawn) {
+        if (plot.drawn && plot.image.extension() == ".html") {
+            std::cout << "Page: " << plot.image.string() << " (interactive; self-contained, works offline)\n";
+            exit_code = 0;
+        } else if (plot.drawn) {
             std::cout << "Figure: " << stem.string() << ".{png,svg,pdf} (data and script: .dat, .gp)\n";
             exit_code = 0;
         } else {

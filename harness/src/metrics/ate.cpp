@@ -30,6 +30,8 @@ AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const Associa
         r.stamps.push_back(est[matches[k].second].t);
         r.aligned_estimate.push_back(aligned);
         r.ground_truth.push_back(data.col(k));
+        r.aligned_orientation.push_back(Eigen::Quaterniond(r.alignment.R * est[matches[k].second].q.toRotationMatrix()).normalized());
+        r.ground_truth_orientation.push_back(gt[matches[k].first].q);
     }
     r.stats = compute_stats(r.errors);
     return r;

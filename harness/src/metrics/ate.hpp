@@ -26,6 +26,9 @@ struct AteResult {
     std::vector<double> stamps;                                   // estimate stamps of the pairs
     std::vector<double> errors;                                   // metres, per pair (for plots)
     std::vector<Eigen::Vector3d> aligned_estimate, ground_truth;  // per pair (for plots)
+    // Per pair (for the report's camera frusta): the estimate's orientation rotated by the alignment
+    // (R · q_est; a scale does not rotate) and the ground truth's own.
+    std::vector<Eigen::Quaterniond> aligned_orientation, ground_truth_orientation;
 };
 
 AteResult compute_ate(const Trajectory& gt, const Trajectory& est, const AteOptions& options);

@@ -1,5 +1,8 @@
 #include "report/html_report.hpp"
 
+#include "report/interactive_page.hpp"
+#include "report/trajectory_view.hpp"
+
 #include "util/escape.hpp"
 #include "util/files.hpp"
 
@@ -79,7 +82,7 @@ document.body.dataset.ready='yes';
 
 std::string leaderboard_table(const nlohmann::json& lb) {
     const std::string primary = lb["context"]["primary_metric"];
-    std::string h = "<table class=\"sortable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" +
+    std::string h = "<table class=\"sortable filterable\" id=\"leaderboard\"><thead><tr><th>rank</th><th class=\"l\">entry</th><th>" +
                     html_text(primary) +
                     " (mean)</th><th>95 % interval</th><th>ATE RMSE [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th><th>fps</th>"
                     "<th>cells</th><th>failed</th><th class=\"l\">tied with</th><th class=\"l\">criteria</th></tr></thead><tbody>\n";
@@ -96,11 +99,12 @@ std::string leaderboard_table(const nlohmann::json& lb) {
                                 c["passed"].get<bool>() ? "✔" : "✘", html_text(c["criterion"].get<std::string>()));
         const std::string rank = e["rank"].is_null() ? "" : std::to_string(e["rank"].get<int>());
         h += fmt::format(
-            "<tr class=\"{}\"><td data-v=\"{}\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
-            "<td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
-            e["complete"].get<bool>() ? "entry" : "entry failed", rank, rank.empty() ? "–" : rank, html_text(e["entry"].get<std::string>()),
-            num(agg, primary, 4), ci, num(agg, "ate.rmse", 4), num(agg, "rpe.trans.rmse", 4), num(agg, "rpe.rot.rmse", 3),
-            num(agg, "fps", 1), e["cells"].size(), e["failed_cells"].get<int>(), ties, crit);
+            "<tr class=\"{}\" data-entry=\"{}\"><td data-v=\"{}\">{}</td><td "
+            "class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+            "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l tie\">{}</td><td class=\"l\">{}</td></tr>\n",
+            e["complete"].get<bool>() ? "entry" : "entry failed", html_text(e["entry"].get<std::string>()), rank, rank.empty() ? "–" : rank,
+            html_text(e["entry"].get<std::string>()), num(agg, primary, 4), ci, num(agg, "ate.rmse", 4), num(agg, "rpe.trans.rmse", 4),
+            num(agg, "rpe.rot.rmse", 3), num(agg, "fps", 1), e["cells"].size(), e["failed_cells"].get<int>(), ties, crit);
     }
     return h + "</tbody></table>\n";
 }
@@ -133,9 +137,39 @@ std::string accuracy_tables(const std::vector<RunGroup>& groups) {
     return h;
 }
 
+// The attributes the page's filters read (report_app.js setUpFilters).
+std::string filter_attributes(const RunGroup& g) {
+    return "data-entry=\"" + html_text(g.entry) + "\" data-row=\"" + html_text(g.row_label()) + "\" data-sensor=\"" +
+           html_text(sensor_title(g.sensor)) + "\"";
+}
+
+// One row per entry × sequence × sensor, means over its repeats; a row with a trajectory to show opens
+// it in the explorer (data-view: its index in the data island's views).
+std::string cells_table(const std::vector<RunGroup>& groups, const std::vector<long>& view_of) {
+    std::string h =
+        "<table class=\"sortable filterable\" id=\"cells\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th>"
+        "<th class=\"l\">sensor</th><th>repeats</th><th>failed</th><th>ATE RMSE [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>"
+        "<th>ms/frame</th><th class=\"l\">view</th></tr></thead><tbody>\n";
+    const auto mean = [](const RunGroup& g, const char* metric, int d) {
+        const auto m = summarize(g, metric);
+        return m ? fmt::format("{:.{}f}", m->mean, d) : std::string();
+    };
+    for (std::size_t k = 0; k < groups.size(); ++k) {
+        const RunGroup& g = groups[k];
+        const std::string view = view_of[k] >= 0 ? fmt::format(" data-view=\"{}\"", view_of[k]) : "";
+        h += fmt::format(
+            "<tr {}{}><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
+            "<td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
+            filter_attributes(g), view, html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), g.runs.size(),
+            g.failed(), mean(g, "ate.rmse", 4), mean(g, "rpe.trans.rmse", 4), mean(g, "rpe.rot.rmse", 3), mean(g, "ms_per_frame", 3),
+            view_of[k] >= 0 ? "▶ show" : "no trajectory");
+    }
+    return h + "</tbody></table>\n";
+}
+
 std::string timing_table(const std::vector<RunGroup>& groups) {
     std::string h =
-        "<table class=\"sortable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th "
+        "<table class=\"sortable filterable\" id=\"timing\"><thead><tr><th class=\"l\">entry</th><th class=\"l\">sequence</th><th "
         "class=\"l\">sensor</th>"
         "<th>mean [ms]</th><th>median</th><th>p95</th><th>max</th><th>fps</th><th>reading [ms]</th><th>peak RSS [MB]</th><th>overhead "
         "[%]</th><th>CPU/wall</th><th>dropped</th>"
@@ -146,13 +180,14 @@ std::string timing_table(const std::vector<RunGroup>& groups) {
         for (const std::string& s : stages_of(groups, g.entry))
             if (const auto ms = stage_mean_ms(g, s)) stages += fmt::format("{} {:.3f}; ", html_text(s), *ms);
         h += fmt::format(
-            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td "
+            "<tr {}><td class=\"l\">{}</td><td class=\"l\">{}</td><td "
             "class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td>"
             "<td>{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"l\">{}</td></tr>\n",
-            html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)), v(timing_mean(g, "mean_ms"), 3),
-            v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3), v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1),
-            v(timing_mean(g, "read_ms_per_frame"), 3), v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1),
-            v(timing_mean(g, "cpu_per_wall"), 2), v(timing_mean(g, "dropped_frames"), 1), stages);
+            filter_attributes(g), html_text(g.entry), html_text(g.row_label()), html_text(sensor_title(g.sensor)),
+            v(timing_mean(g, "mean_ms"), 3), v(timing_mean(g, "median_ms"), 3), v(timing_mean(g, "p95_ms"), 3),
+            v(timing_mean(g, "max_ms"), 3), v(timing_mean(g, "fps"), 1), v(timing_mean(g, "read_ms_per_frame"), 3),
+            v(timing_mean(g, "peak_rss_mb"), 0), v(timing_mean(g, "harness_overhead_pct"), 1), v(timing_mean(g, "cpu_per_wall"), 2),
+            v(timing_mean(g, "dropped_frames"), 1), stages);
     }
     return h + "</tbody></table>\n";
 }
@@ -177,8 +212,21 @@ std::string failures_table(const nlohmann::json& lb) {
 
 std::string render_html_report(const std::vector<RunGroup>& groups, const nlohmann::json& lb, const std::vector<Figure>& figures,
                                const fs::path& figure_folder, const ReportContext& ctx) {
-    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>" + html_text(ctx.name) +
-                    " — vobench report</title>\n<style>" + kStyle + "</style></head>\n<body>\n";
+    // The explorer's views: the first successful, evaluated repeat of each entry × sequence × sensor
+    // (the cells the figures draw).
+    nlohmann::json views = nlohmann::json::array();
+    std::vector<long> view_of(groups.size(), -1);
+    for (std::size_t k = 0; k < groups.size(); ++k)
+        for (const RunRecord* r : groups[k].runs)
+            if (r->evaluation) {
+                if (auto v = cell_view(*r)) {
+                    view_of[k] = static_cast<long>(views.size());
+                    views.push_back(std::move(*v));
+                }
+                break;
+            }
+    std::string h = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n" + page_head_security() + "<title>" +
+                    html_text(ctx.name) + " — vobench report</title>\n<style>" + kStyle + explorer_style() + "</style></head>\n<body>\n";
     h += "<h1>" + html_text(ctx.name) + " — vobench report</h1>\n";
     h += "<p>Generated " + html_text(ctx.generated) + " by vobench " + html_text(lb["context"]["vobench_version"].get<std::string>()) +
          " on " + html_text(lb["context"]["host"]["cpu"].get<std::string>()) + ". " + html_text(ctx.protocol_text) + "</p>\n";
@@ -186,6 +234,12 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
          " over each entry's cells; entries with a failed cell are not ranked. Ties: 95 % bootstrap intervals overlap. "
          "Click a column to sort.</p>\n" +
          leaderboard_table(lb);
+    h += "<h2>Explore</h2>\n<div id=\"filters\"></div>\n<p>One row per entry, sequence and sensor (means over repeats). Click a row "
+         "to show its first successful repeat below: the trajectory in 3-D (drag to orbit, scroll to zoom; the estimate aligned as "
+         "ATE aligns it and coloured by its residual), a time slider that moves the camera, the RPE over time of every entry on "
+         "that sequence and sensor, and the time per frame by stage. Trajectories of more than 1500 poses are shown decimated; "
+         "the filters apply to every table on the page.</p>\n" +
+         cells_table(groups, view_of) + "<section id=\"explorer\"></section>\n";
     h += "<h2>Accuracy (layout of Table 5, Kraft et al. 2016)</h2>\n<p>Mean ± std over repeats. † some repeats failed; ‡ within the ground "
          "truth's declared accuracy.</p>\n" +
          accuracy_tables(groups);
@@ -224,7 +278,17 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
         h += "</ul>\n";
     }
     h += "<h2>Protocol</h2>\n<pre>" + html_text(json_text(lb["context"]["protocol"])) + "</pre>\n";
-    h += "<script>" + std::string(kScript) + "</script>\n</body></html>\n";
+    h += "<script>" + std::string(kScript) + "</script>\n";
+    // The explorer opens on the best-ranked entry's first view.
+    const auto initial_view = [&]() -> long {
+        for (const auto& e : lb["entries"])
+            if (!e["rank"].is_null() && e["rank"].get<int>() == 1)
+                for (std::size_t k = 0; k < groups.size(); ++k)
+                    if (view_of[k] >= 0 && groups[k].entry == e["entry"].get<std::string>()) return view_of[k];
+        return 0;
+    };
+    h += interactive_scripts({{"kind", "report"}, {"views", views}, {"initial_view", initial_view()}});
+    h += "</body></html>\n";
     return h;
 }
 

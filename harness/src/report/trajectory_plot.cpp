@@ -1,5 +1,8 @@
 #include "report/trajectory_plot.hpp"
 
+#include "report/interactive_page.hpp"
+#include "report/trajectory_view.hpp"
+
 #include "metrics/ate.hpp"
 #include "report/gnuplot.hpp"
 #include "util/escape.hpp"
@@ -102,8 +105,8 @@ TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, 
                                      const PlotOptions& options, const fs::path& out) {
     if (estimates.empty() && !reference) throw std::invalid_argument("nothing to plot: give at least one trajectory");
     const std::string extension = out.extension().string();
-    if (extension != ".png" && extension != ".svg" && extension != ".pdf")
-        throw std::invalid_argument(out.string() + ": the figure must end .png, .svg or .pdf");
+    if (extension != ".png" && extension != ".svg" && extension != ".pdf" && extension != ".html")
+        throw std::invalid_argument(out.string() + ": the figure must end .png, .svg, .pdf or .html");
     const std::string stem = out.stem().string();
     // The stem is written into the script between quotes: plain characters only.
     if (!std::regex_match(stem, std::regex("[A-Za-z0-9._+-]{1,100}")))
@@ -145,6 +148,13 @@ TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, 
         plot.lines.push_back(line);
     }
 
+    if (extension == ".html") {  // the interactive variant: one page, no gnuplot
+        std::string title = "vobench plot:";
+        for (const PlottedTrajectory& line : plot.lines) title += " " + line.label;
+        write_trajectory_page(trajectories_view(reference, estimates, plot.lines), title, out);
+        plot.drawn = true;
+        return plot;
+    }
     const bool ref = reference.has_value();
     // One legend entry a line below the plot, left-aligned text: long titles are never clipped.
     std::string setup = "set grid\nset key outside bottom center vertical Left reverse\n";

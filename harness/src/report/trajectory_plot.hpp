@@ -49,7 +49,8 @@ struct TrajectoryPlot {
     bool drawn = false;                    // gnuplot ran; data and script are written either way
 };
 
-// `out`: the figure's file, ending .png, .svg or .pdf; its name (not its folder) must be a plain file
+// `out`: the figure's file, ending .png, .svg or .pdf (all three are drawn), or .html (an interactive
+// page: report/interactive_page.hpp); its name (not its folder) must be a plain file
 // name (letters, digits, . _ + -), as it goes into the script. Throws std::invalid_argument for a bad
 // name or no estimate, std::runtime_error naming the estimate when it cannot be aligned.
 TrajectoryPlot write_trajectory_plot(const std::optional<PlotInput>& reference, const std::vector<PlotInput>& estimates,
