@@ -66,6 +66,13 @@ for r in rows:
 PY
 done
 
+# Box plots over repeats and sequences: one per accuracy metric, a box per entry with cells (five here).
+for m in ate.rmse rpe.trans.rmse rpe.rot.rmse; do
+  stem=$(ls out/figures/ | grep -E "^boxes_${m}-[0-9a-f]{8}\.png$" | sed 's/\.png$//' || true)
+  [ -n "$stem" ] || { echo "FAIL: no box plot for $m"; ls out/figures | grep boxes; cat out/figures/boxes_*.log 2>/dev/null; exit 1; }
+  test "$(grep -c '^#.* cells$' "out/figures/$stem.dat")" -eq 5 || { echo "FAIL: $stem.dat: not five boxes"; exit 1; }
+done
+
 # RPE over time across entries: one figure per sequence and sensor that two or more entries ran.
 entries=$(/usr/bin/python3 -c 'import json; print(len(json.load(open("out/leaderboard.json"))["entries"]))')
 if [ "$entries" -ge 2 ]; then

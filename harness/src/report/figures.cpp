@@ -1,5 +1,6 @@
 #include "report/figures.hpp"
 
+#include "report/box_figures.hpp"
 #include "report/comparison_figures.hpp"
 #include "report/gnuplot.hpp"
 
@@ -239,6 +240,7 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
     }
     degradation_figures(groups, folder, figures);
     for (Figure& f : write_comparison_figures(groups, folder)) figures.push_back(std::move(f));
+    for (Figure& f : write_box_figures(groups, folder)) figures.push_back(std::move(f));
     draw_all(figures, folder);
     return figures;
 }

@@ -5,6 +5,7 @@
 //                              the ATE residual (Fig. 13)
 //   bars_<entry>.*             ATE and RPE RMSE per sequence and sensor (Fig. 14)
 //   compare_<metric>.*         every entry side by side on one scale (report/comparison_figures.hpp)
+//   boxes_<metric>.*           the spread over each entry's cells, a box per entry (report/box_figures.hpp)
 //   rpe_over_time_<sequence>_<sensor>.*  RPE over time of the best entries, translation and rotation
 // Every name that came from a config or plugin reaches a file name only through file_stem() (a slug
 // plus a hash, so two entries never share a figure) and a script only through gnuplot_quoted().
@@ -19,7 +20,7 @@
 namespace vobench {
 
 struct Figure {
-    std::string kind;  // "rpe", "traj", "bars", "compare", "rpe_over_time", "degradation"
+    std::string kind;  // "rpe", "traj", "bars", "compare", "boxes", "rpe_over_time", "degradation"
     std::string title;
     std::string stem;    // figures/<stem>.{png,svg,pdf,dat,gp}
     bool drawn = false;  // gnuplot ran and wrote the PNG

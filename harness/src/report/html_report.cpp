@@ -259,7 +259,7 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
     // per-cell trajectories, at most kMaxEmbedded in all; every figure is in figures/ regardless.
     constexpr std::size_t kMaxEmbedded = 60;
     std::vector<const Figure*> order;
-    for (const char* kind : {"compare", "rpe_over_time", "degradation", "bars", "rpe", "traj"})
+    for (const char* kind : {"compare", "boxes", "rpe_over_time", "degradation", "bars", "rpe", "traj"})
         for (const Figure& f : figures)
             if (f.drawn && f.kind == kind) order.push_back(&f);
     if (order.size() > kMaxEmbedded)
