@@ -134,6 +134,12 @@ assert ink > 0.02 and colours >= 12, f"the viewer's canvas looks blank: {ink:.4f
 print(f"viewer canvas {w}x{h} at ({x},{y}): {ink:.3f} of its pixels inked, {colours} colour bins")
 PY
 page_requests
+# The filters, set from the address: one algorithm, one sequence leaves one row of the cells table.
+timeout 180 chromium "${flags[@]}" --virtual-time-budget=15000 --dump-dom "file://$work/out/report.html#entry=put_vo&row=sim%2Fv2" \
+  > dom-filtered.html 2>> chromium.log
+grep -Eq '<table[^>]*id="cells"[^>]*data-visible="1"' dom-filtered.html || { echo "FAIL: the filter from the address"; grep -o '<table[^>]*>' dom-filtered.html; exit 1; }
+grep -Eq '<table[^>]*id="leaderboard"[^>]*data-visible="1"' dom-filtered.html || { echo "FAIL: the leaderboard filter"; exit 1; }
+page_requests
 
 echo "== vobench plot --out FILE.html"
 run_dir=out/runs/$(/usr/bin/python3 -c 'import json; print([e for e in json.load(open("out/leaderboard.json"))["entries"] if e["entry"] == "put_vo"][0]["cells"][0]["id"])')/

@@ -21,7 +21,9 @@ struct Box {
 };
 
 std::string axis_title(const metrics::MetricInfo& m) {
-    const std::string what = m.name == "rpe.trans.rmse" ? "translational RPE RMSE" : m.name == "rpe.rot.rmse" ? "rotational RPE RMSE" : m.title;
+    const std::string what = m.name == "rpe.trans.rmse" ? "translational RPE RMSE"
+                             : m.name == "rpe.rot.rmse" ? "rotational RPE RMSE"
+                                                        : m.title;
     return fmt::format("{} [{}]", what, m.unit == "deg" ? "°" : m.unit);
 }
 
@@ -71,8 +73,8 @@ std::vector<Figure> write_box_figures(const std::vector<RunGroup>& groups, const
             tics += fmt::format("{}{} {}", k ? ", " : "", gnuplot_quoted(label), k + 1);
             const std::size_t s = static_cast<std::size_t>(std::find(sensors.begin(), sensors.end(), b.sensor) - sensors.begin());
             // The legend names the sensors (once each), only when there are two or more.
-            const bool first_of_sensor = std::none_of(boxes.begin(), boxes.begin() + static_cast<long>(k),
-                                                      [&](const Box& o) { return o.sensor == b.sensor; });
+            const bool first_of_sensor =
+                std::none_of(boxes.begin(), boxes.begin() + static_cast<long>(k), [&](const Box& o) { return o.sensor == b.sensor; });
             const std::string title =
                 sensors.size() > 1 && first_of_sensor ? "title " + gnuplot_quoted(sensor_title(b.sensor)) : std::string("notitle");
             // Each cell a point beside its box's centre, spread by the golden ratio (fixed, not random).

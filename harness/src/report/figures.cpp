@@ -155,8 +155,10 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 for (const auto& p : r->evaluation->rpe->pairs)
                     data += fmt::format("{:.9f} {:.9g} {:.9g}\n", p.t_first - t0, p.trans_m, p.rot_deg);
                 data += "\n\n";
-                plot += fmt::format("{}'{}.dat' index {} using 1:2 with lines lw 1.5 title {}", plot.empty() ? "plot " : ", ",
-                                    file_stem({"rpe", entry, row}), block++, gnuplot_quoted(sensor_title(s)));
+                // A legend only where there are sensors to tell apart.
+                plot += fmt::format("{}'{}.dat' index {} using 1:2 with lines lw 1.5 {}", plot.empty() ? "plot " : ", ",
+                                    file_stem({"rpe", entry, row}), block++,
+                                    sensors.size() > 1 ? "title " + gnuplot_quoted(sensor_title(s)) : std::string("notitle"));
             }
             if (block == 0) continue;
             Figure f{"rpe", fmt::format("RPE over time — {} on {}", entry, row), file_stem({"rpe", entry, row}), false};
@@ -189,8 +191,8 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
                 data += fmt::format("{:.9g} {:.9g} {:.9g} {:.9g} {:.9g}\n", gt[k][a], gt[k][b], est[k][a], est[k][b],
                                     r->evaluation->ate->errors[k]);
             Figure f{"traj",
-                     fmt::format("{} on {} ({}) — ATE RMSE {:.4f} m", entry, g.row_label(), sensor_title(g.sensor),
-                                 r->evaluation->ate->stats.rmse),
+                     fmt::format("{} on {}{} — ATE RMSE {:.4f} m", entry, g.row_label(),
+                                 g.sensor.empty() ? "" : " (" + sensor_title(g.sensor) + ")", r->evaluation->ate->stats.rmse),
                      file_stem({"traj", entry, g.row_label(), g.sensor}), false};
             // Equal axis scales, unless the path is nearly a line (then the plot would be a sliver).
             const bool equal = std::min(extent[a], extent[b]) > 0.15 * std::max(extent[a], extent[b]);
@@ -225,10 +227,9 @@ std::vector<Figure> write_figures(const std::vector<RunGroup>& groups, const fs:
         Figure f{"bars", fmt::format("ATE and RPE per sequence and sensor — {}", entry), file_stem({"bars", entry}), false};
         std::string ate_plot, rpe_plot;
         for (std::size_t k = 0; k < sensors.size(); ++k) {
-            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 2 + 2 * k,
-                                    gnuplot_quoted(sensor_title(sensors[k])));
-            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) title {}", k ? ", " : "plot ", f.stem, 3 + 2 * k,
-                                    gnuplot_quoted(sensor_title(sensors[k])));
+            const std::string key = sensors.size() > 1 ? "title " + gnuplot_quoted(sensor_title(sensors[k])) : std::string("notitle");
+            ate_plot += fmt::format("{}'{}.dat' using {}:xtic(1) {}", k ? ", " : "plot ", f.stem, 2 + 2 * k, key);
+            rpe_plot += fmt::format("{}'{}.dat' using {}:xtic(1) {}", k ? ", " : "plot ", f.stem, 3 + 2 * k, key);
         }
         const std::string setup =
             "set style data histograms\nset style histogram clustered gap 1\nset style fill solid 0.8 border -1\nset grid ytics\n"

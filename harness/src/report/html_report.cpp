@@ -91,8 +91,12 @@ std::string leaderboard_table(const nlohmann::json& lb) {
         std::string ci;
         if (agg.contains(primary) && agg[primary].contains("ci95"))
             ci = fmt::format("[{:.4f}, {:.4f}]", agg[primary]["ci95"][0].get<double>(), agg[primary]["ci95"][1].get<double>());
+        // At most five names in the cell (a wide sweep ties dozens); all of them in leaderboard.json.
         std::string ties;
-        for (const auto& t : e["tied_with"]) ties += (ties.empty() ? "" : ", ") + html_text(t.get<std::string>());
+        std::size_t shown = 0;
+        for (const auto& t : e["tied_with"])
+            if (shown++ < 5) ties += (ties.empty() ? "" : ", ") + html_text(t.get<std::string>());
+        if (shown > 5) ties += fmt::format(" and {} more", shown - 5);
         std::string crit;
         for (const auto& c : e["criteria"])
             crit += fmt::format("<span class=\"{}\">{} {}</span><br>", c["passed"].get<bool>() ? "pass" : "fail",
@@ -114,9 +118,14 @@ std::string accuracy_tables(const std::vector<RunGroup>& groups) {
     std::string h;
     for (const std::string& entry : entries_of(groups)) {
         const auto sensors = sensors_of(groups, entry);
-        h += "<h3>" + html_text(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\" rowspan=\"2\">sequence</th>";
-        for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_text(sensor_title(s)) + "</th>";
-        h += "</tr><tr>";
+        // A data set without sensor names (one camera) gets no sensor row.
+        const bool sensor_row = !(sensors.size() == 1 && sensors.front().empty());
+        h += "<h3>" + html_text(entry) + "</h3>\n<table class=\"table5\"><thead><tr><th class=\"l\"" +
+             (sensor_row ? " rowspan=\"2\"" : "") + ">sequence</th>";
+        if (sensor_row) {
+            for (const std::string& s : sensors) h += "<th colspan=\"4\">" + html_text(sensor_title(s)) + "</th>";
+            h += "</tr><tr>";
+        }
         for (std::size_t k = 0; k < sensors.size(); ++k)
             h += "<th>ATE RMSE [m]</th><th>ATE std [m]</th><th>RPE RMSE [m]</th><th>RPE RMSE [°]</th>";
         h += "</tr></thead><tbody>\n";
@@ -234,12 +243,12 @@ std::string render_html_report(const std::vector<RunGroup>& groups, const nlohma
          " over each entry's cells; entries with a failed cell are not ranked. Ties: 95 % bootstrap intervals overlap. "
          "Click a column to sort.</p>\n" +
          leaderboard_table(lb);
-    h += "<h2>Explore</h2>\n<div id=\"filters\"></div>\n<p>One row per entry, sequence and sensor (means over repeats). Click a row "
-         "to show its first successful repeat below: the trajectory in 3-D (drag to orbit, scroll to zoom; the estimate aligned as "
-         "ATE aligns it and coloured by its residual), a time slider that moves the camera, the RPE over time of every entry on "
-         "that sequence and sensor, and the time per frame by stage. Trajectories of more than 1500 poses are shown decimated; "
-         "the filters apply to every table on the page.</p>\n" +
-         cells_table(groups, view_of) + "<section id=\"explorer\"></section>\n";
+    h += "<h2>Explore</h2>\n<div id=\"filters\"></div>\n<p>The explorer shows one cell: its trajectory in 3-D (drag to orbit, scroll to "
+         "zoom; the estimate aligned as ATE aligns it and coloured by its residual), a time slider that moves the camera, the RPE over "
+         "time of every entry on that sequence and sensor, and the time per frame by stage. Below it, one row per entry, sequence and "
+         "sensor (means over repeats): click a row to show its first successful repeat. Trajectories of more than 1500 poses are "
+         "shown decimated; the filters apply to every table on the page.</p>\n<section id=\"explorer\"></section>\n" +
+         cells_table(groups, view_of);
     h += "<h2>Accuracy (layout of Table 5, Kraft et al. 2016)</h2>\n<p>Mean ± std over repeats. † some repeats failed; ‡ within the ground "
          "truth's declared accuracy.</p>\n" +
          accuracy_tables(groups);

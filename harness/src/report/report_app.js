@@ -249,8 +249,27 @@
       s.appendChild(el('option', '', 'all')).value = '';
       names.forEach(function (n) { s.appendChild(el('option', '', n)).value = n; });
       selects[k[0]] = s;
-      s.addEventListener('change', apply);
+      s.addEventListener('change', function () { apply(); remember(); });
     });
+    // The filters live in the address too (report.html#entry=put_vo&sensor=Kinect%20v2), so that a
+    // filtered view can be linked to; a value the page does not have is ignored.
+    var wanted = {};
+    location.hash.replace(/^#/, '').split('&').forEach(function (kv) {
+      var at = kv.indexOf('=');
+      if (at > 0) {
+        try { wanted[decodeURIComponent(kv.slice(0, at))] = decodeURIComponent(kv.slice(at + 1)); } catch (e) { /* not ours */ }
+      }
+    });
+    keys.forEach(function (k) {
+      var s = selects[k[0]], w = wanted[k[0]];
+      if (w !== undefined && Array.prototype.some.call(s.options, function (o) { return o.value === w; })) s.value = w;
+    });
+    function remember() {
+      var parts = keys.filter(function (k) { return selects[k[0]].value !== ''; }).map(function (k) {
+        return k[0] + '=' + encodeURIComponent(selects[k[0]].value);
+      });
+      history.replaceState(null, '', parts.length ? '#' + parts.join('&') : location.pathname);
+    }
     function apply() {
       rows.forEach(function (r) {
         r.hidden = keys.some(function (k) {

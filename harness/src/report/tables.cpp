@@ -52,7 +52,8 @@ std::string accuracy_markdown(const std::vector<RunGroup>& groups) {
         const auto sensors = sensors_of(groups, entry);
         md += fmt::format("### {}\n\n| sequence |", markdown_text(entry));
         for (const std::string& s : sensors)
-            for (const Column& c : kAccuracy) md += fmt::format(" {} {} |", markdown_text(sensor_title(s)), c.title);
+            for (const Column& c : kAccuracy)  // a data set without sensor names (one camera): no sensor in the heading
+                md += s.empty() ? fmt::format(" {} |", c.title) : fmt::format(" {} {} |", markdown_text(sensor_title(s)), c.title);
         md += "\n|---|";
         for (std::size_t k = 0; k < sensors.size() * std::size(kAccuracy); ++k) md += "---:|";
         md += "\n";
