@@ -98,7 +98,8 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
         bool any = false;
         double smallest = 0, largest = 0;  // of the positive means
         for (const std::string& e : entries) {
-            data += gnuplot::data_label(e);
+            std::string row;
+            bool has_value = false;
             for (const std::string& s : sensors) {
                 std::vector<double> values;
                 for (const RunGroup& g : groups)
@@ -107,10 +108,10 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
                             if (r->ok)
                                 if (auto it = r->metrics.find(name); it != r->metrics.end()) values.push_back(it->second);
                 if (values.empty()) {
-                    data += " NaN NaN NaN 0";
+                    row += " NaN NaN NaN 0";
                     continue;
                 }
-                any = true;
+                any = has_value = true;
                 double mean = 0;
                 for (double v : values) mean += v;
                 mean /= static_cast<double>(values.size());
@@ -119,9 +120,10 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
                     smallest = smallest > 0 ? std::min(smallest, mean) : mean;
                     largest = std::max(largest, hi);
                 }
-                data += fmt::format(" {:.17g} {:.17g} {:.17g} {}", mean, lo, hi, values.size());
+                row += fmt::format(" {:.17g} {:.17g} {:.17g} {}", mean, lo, hi, values.size());
             }
-            data += "\n";
+            // An entry without a value keeps its place on the axis and says why it has no bar.
+            data += gnuplot::data_label(has_value ? e : e + " (no result)") + row + "\n";
         }
         if (!any) continue;
         Figure f{"compare", fmt::format("{} — every entry, mean over its cells with the 95 % bootstrap interval", what_of(*metric)),
