@@ -3,6 +3,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace vobench::synth;
@@ -164,4 +165,28 @@ TEST_CASE("rendering is deterministic in the seed", "[synth][determinism]") {
     CHECK(cv::norm(fa.depth, fb.depth, cv::NORM_INF) == 0);
     CHECK(cv::norm(fa.color, fc.color, cv::NORM_INF) > 0);
     CHECK(cv::norm(fa.depth, fc.depth, cv::NORM_INF) > 0);
+}
+
+TEST_CASE("tone_curve stretches the colour image's contrast about grey 136 and clips, noise as it was", "[synth][sensor]") {
+    TestRig rig(2.0);
+    const auto grey = [&](bool tone) {
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects(tone ? "none,+tone_curve" : "none");
+        const Renderer r(rig.scene, sensor, 5);
+        return r.render(0, rig.pose, rig.pose, 0.1, false).color;
+    };
+    const cv::Mat plain = grey(false), toned = grey(true);
+    // Pixel by pixel and channel by channel (no noise, same scene): y' = 136 + 1.5 (y − 136), clipped
+    // to [0, 255]; within 1 level for the rounding of y.
+    int stretched = 0;
+    for (int v = 0; v < plain.rows; v += 7)
+        for (int u = 0; u < plain.cols; u += 7)
+            for (int ch = 0; ch < 3; ++ch) {
+                const double y = plain.at<cv::Vec3b>(v, u)[ch];
+                const double want = std::clamp(136.0 + 1.5 * (y - 136.0), 0.0, 255.0);
+                REQUIRE(std::abs(toned.at<cv::Vec3b>(v, u)[ch] - want) <= 1.0);
+                stretched += std::abs(y - 136.0) > 4;
+            }
+    CHECK(stretched > 100);                        // the wall's texture spans grey levels, so the stretch was tested
+    CHECK(parse_effects("").tone_curve == false);  // off unless asked for (docs/synthetic-sensors.md says why)
 }

@@ -15,6 +15,10 @@ namespace vobench::synth {
 namespace {
 
 // sRGB encoding (IEC 61966-2-1) as a 4096-entry table over [0, 1] linear: 8-bit output cannot tell.
+// The tone curve's fixed point: the real fr1 frames' mean grey level (136 of 255, vobench synth stats),
+// which auto-exposure already brings the rendered frames to, so the stretch leaves the mean in place.
+constexpr double kTonePivot = 136.0 / 255.0;
+
 double srgb(double linear) {
     static const std::vector<double> table = [] {
         std::vector<double> t(4097);
@@ -177,6 +181,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     const double half_diagonal2 = 0.25 * (static_cast<double>(W) * W + static_cast<double>(H) * H);
     const double vignetting = fx.vignetting ? sensor_.vignetting : 0.0;
     const double noise_dn = fx.image_noise ? sensor_.color_noise_dn : 0.0;
+    const double contrast = fx.tone_curve ? sensor_.tone_contrast : 1.0;
     out.color.create(H, W, CV_8UC3);
     tbb::parallel_for(0, H, [&](int v) {
         for (int u = 0; u < W; ++u) {
@@ -188,7 +193,11 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
                 const double noise =
                     noise_dn > 0 ? noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch))
                                  : 0.0;
-                px[ch] = cv::saturate_cast<uint8_t>(255.0 * srgb(c[ch]) + noise);
+                // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
+                // measured on the real images, tone curve and all).
+                const double y = srgb(c[ch]);
+                const double display = contrast == 1.0 ? y : std::clamp(kTonePivot + contrast * (y - kTonePivot), 0.0, 1.0);
+                px[ch] = cv::saturate_cast<uint8_t>(255.0 * display + noise);
             }
         }
     });

@@ -24,7 +24,8 @@ enum class DepthPrinciple { StructuredLight, TimeOfFlight };
 
 // Every effect of the sensor models, each one switchable (`vobench synth --effects`), so that what each
 // costs an algorithm can be measured. All on by default except stamp_offsets, which only applies to
-// built-in trajectories (with --stamps the real stamps are used whatever it says).
+// built-in trajectories (with --stamps the real stamps are used whatever it says), and tone_curve,
+// which matches the real frames' contrast but makes feature tracking easier than on them.
 struct Effects {
     // Colour camera.
     bool motion_blur = true;      // integration over the exposure time
@@ -32,6 +33,7 @@ struct Effects {
     bool image_noise = true;      // shot and read noise
     bool vignetting = true;       // radial fall-off of the lens
     bool auto_exposure = true;    // a gain that follows the scene's brightness with a lag
+    bool tone_curve = false;      // the camera's contrast boost in display space (off: see docs/synthetic-sensors.md)
     bool highlights = true;       // specular reflection on glossy materials
     bool rolling_shutter = true;  // rows exposed one after another while the camera moves
     // Depth.
@@ -92,6 +94,10 @@ struct SensorModel {
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
     double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)
     double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene
+    // The camera's tone curve beyond sRGB (effect tone_curve): display values stretched about the real
+    // frames' mean grey g = 136/255, y' = g + tone_contrast·(y − g), clipped to [0, 1] (consumer cameras
+    // boost contrast; Grossberg & Nayar 2004 measured such S-shaped responses). 1: plain sRGB.
+    double tone_contrast = 1.0;
     double gain = 1.0;
     double color_readout_s = 0.0, depth_readout_s = 0.0;  // rolling shutter: first to last row
     Effects effects;
