@@ -1,6 +1,7 @@
 #include "report/box_figures.hpp"
 
 #include "metrics/metric_catalog.hpp"
+#include "report/comparison_figures.hpp"
 #include "report/gnuplot.hpp"
 #include "util/escape.hpp"
 #include "util/files.hpp"
@@ -19,13 +20,6 @@ struct Box {
     std::string entry, sensor;
     std::vector<double> values;  // one per successful cell, in the records' order
 };
-
-std::string axis_title(const metrics::MetricInfo& m) {
-    const std::string what = m.name == "rpe.trans.rmse" ? "translational RPE RMSE"
-                             : m.name == "rpe.rot.rmse" ? "rotational RPE RMSE"
-                                                        : m.title;
-    return fmt::format("{} [{}]", what, m.unit == "deg" ? "°" : m.unit);
-}
 
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
@@ -57,7 +51,7 @@ std::vector<Figure> write_box_figures(const std::vector<RunGroup>& groups, const
             }
         // A box needs a spread: with no entry of two or more cells the comparison bars say it all.
         if (boxes.empty() || std::none_of(boxes.begin(), boxes.end(), [](const Box& b) { return b.values.size() >= 2; })) continue;
-        Figure f{"boxes", fmt::format("{} — spread over each entry's cells (sequences and repeats)", axis_title(*metric)),
+        Figure f{"boxes", fmt::format("{} — spread over each entry's cells (sequences and repeats)", metric_axis_title(*metric)),
                  file_stem({"boxes", name}), false};
         std::string data, plot, tics;
         double smallest = 0, largest = 0;
@@ -90,7 +84,7 @@ std::vector<Figure> write_box_figures(const std::vector<RunGroup>& groups, const
         const std::string setup = fmt::format(
             "set title {}\nset ylabel {}\nset style boxplot outliers pointtype 6\nset boxwidth 0.5\nset grid ytics\n"
             "set xtics ({}) rotate by -30 left noenhanced\nset xrange [0.3:{:.1f}]\n{}set key top left\nset rmargin 16",
-            gnuplot_quoted(f.title), gnuplot_quoted(axis_title(*metric) + (log_scale ? " (log scale)" : "")), tics,
+            gnuplot_quoted(f.title), gnuplot_quoted(metric_axis_title(*metric) + (log_scale ? " (log scale)" : "")), tics,
             static_cast<double>(boxes.size()) + 0.7, scale);
         const int width = std::clamp(360 + 80 * static_cast<int>(boxes.size()), 640, 1800);
         write_file_atomic(folder / (f.stem + ".dat"), data);

@@ -24,8 +24,6 @@ std::string what_of(const metrics::MetricInfo& m) {
     return m.title;
 }
 
-std::string axis_title(const metrics::MetricInfo& m) { return fmt::format("{} [{}]", what_of(m), m.unit == "deg" ? "°" : m.unit); }
-
 // RPE over time of the best entries on one sequence and sensor: translation and rotation, one line an
 // entry (its first successful cell), the entries ranked by their mean ATE RMSE there.
 constexpr std::size_t kTopEntries = 5;
@@ -79,6 +77,8 @@ void rpe_over_time(const std::vector<RunGroup>& groups, const std::vector<std::s
 }
 
 }  // namespace
+
+std::string metric_axis_title(const metrics::MetricInfo& m) { return fmt::format("{} [{}]", what_of(m), m.unit == "deg" ? "°" : m.unit); }
 
 std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups, const fs::path& folder) {
     std::vector<Figure> out;
@@ -142,7 +142,7 @@ std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups
             "set title {}\nset ylabel {}\nset style data histograms\nset style histogram errorbars gap 1.5 lw 1.2\n"
             "set style fill solid 0.85 border -1\nset grid ytics\nset xtics rotate by -30 left noenhanced\n{}"
             "set datafile missing 'NaN'\nset key top left\nset rmargin 16",
-            gnuplot_quoted(f.title), gnuplot_quoted(axis_title(*metric) + (log_scale ? " (log scale)" : "")), scale);
+            gnuplot_quoted(f.title), gnuplot_quoted(metric_axis_title(*metric) + (log_scale ? " (log scale)" : "")), scale);
         const int width = std::clamp(360 + 70 * static_cast<int>(entries.size() * std::max<std::size_t>(1, sensors.size())), 640, 1800);
         write_file_atomic(folder / (f.stem + ".dat"), data);
         write_file_atomic(folder / (f.stem + ".gp"), gnuplot::script(f.stem, setup, plot, width, 520));

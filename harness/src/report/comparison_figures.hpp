@@ -10,6 +10,7 @@
 //   rpe_over_time_<sequence>_<sensor>.*
 #pragma once
 
+#include "metrics/metric_catalog.hpp"
 #include "report/aggregate.hpp"
 #include "report/figures.hpp"
 
@@ -17,6 +18,9 @@
 #include <vector>
 
 namespace vobench {
+
+// A metric's axis label with its unit: "translational RPE RMSE [m]", "rotational RPE RMSE [°]".
+std::string metric_axis_title(const metrics::MetricInfo& metric);
 
 // Writes data and scripts under `folder`; drawing is the caller's (figures.cpp draws all at once).
 std::vector<Figure> write_comparison_figures(const std::vector<RunGroup>& groups, const std::filesystem::path& folder);

@@ -4,7 +4,10 @@
 #include "report/aggregate.hpp"
 #include "util/escape.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <cstdlib>
 
 namespace vobench {
 namespace {
@@ -12,27 +15,22 @@ namespace {
 using nlohmann::json;
 
 // Display numbers, shortened: positions and quaternions to 1e-5 (10 µm on a path of metres), times
-// to 0.1 ms, errors and milliseconds to four significant digits. A non-finite value becomes null.
-json rounded(double x, double step) {
-    if (!std::isfinite(x)) return nullptr;
-    return std::round(x / step) * step;
-}
-json significant(double x) {
-    if (!std::isfinite(x)) return nullptr;
-    if (x == 0) return 0.0;
-    const double step = std::pow(10.0, std::floor(std::log10(std::abs(x))) - 3);
-    return std::round(x / step) * step;
-}
+// to 0.1 ms, errors and milliseconds to four significant digits. The value is the double nearest the
+// printed decimal, so that the JSON writer's shortest round-trip form is that decimal (x/step·step
+// would print 17 digits). A non-finite value becomes null.
+json as_json(const std::string& printed) { return std::strtod(printed.c_str(), nullptr); }
+json rounded(double x, int decimals) { return std::isfinite(x) ? as_json(fmt::format("{:.{}f}", x, decimals)) : json(nullptr); }
+json significant(double x) { return std::isfinite(x) ? as_json(fmt::format("{:.4g}", x)) : json(nullptr); }
 
 json track(const std::string& label, const std::string& role, const std::vector<double>& stamps, double t0,
            const std::vector<Eigen::Vector3d>& positions, const std::vector<Eigen::Quaterniond>& orientations,
            const std::vector<std::size_t>& shown) {
     json t = json::array(), p = json::array(), q = json::array();
     for (std::size_t i : shown) {
-        t.push_back(rounded(stamps[i] - t0, 1e-4));
-        for (int a = 0; a < 3; ++a) p.push_back(rounded(positions[i][a], 1e-5));
+        t.push_back(rounded(stamps[i] - t0, 4));
+        for (int a = 0; a < 3; ++a) p.push_back(rounded(positions[i][a], 5));
         const Eigen::Quaterniond& o = orientations[i];
-        for (double c : {o.w(), o.x(), o.y(), o.z()}) q.push_back(rounded(c, 1e-5));
+        for (double c : {o.w(), o.x(), o.y(), o.z()}) q.push_back(rounded(c, 5));
     }
     return {{"label", clean_text(label)}, {"role", role}, {"t", t}, {"p", p}, {"q", q}};
 }
@@ -55,7 +53,7 @@ json timing_view(const std::filesystem::path& file, double t0, std::size_t max_r
     };
     json t = json::array(), process = json::array(), read = json::array(), stages = json::array();
     for (std::size_t i = 0; i < n; i += bucket) {
-        t.push_back(rounded(table.stamps[i] - t0, 1e-4));
+        t.push_back(rounded(table.stamps[i] - t0, 4));
         process.push_back(mean(table.process_ms, i));
         read.push_back(mean(table.read_ms, i));
     }
@@ -109,7 +107,7 @@ std::optional<json> cell_view(const RunRecord& run, const ViewLimits& limits) {
         const std::vector<std::size_t> pairs = display_indices(rpe->pairs.size(), limits.max_rpe_pairs);
         json t = json::array(), trans = json::array(), rot = json::array();
         for (std::size_t i : pairs) {
-            t.push_back(rounded(rpe->pairs[i].t_first - t0, 1e-4));
+            t.push_back(rounded(rpe->pairs[i].t_first - t0, 4));
             trans.push_back(significant(rpe->pairs[i].trans_m));
             rot.push_back(significant(rpe->pairs[i].rot_deg));
         }
