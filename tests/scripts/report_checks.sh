@@ -93,7 +93,7 @@ flags=(--headless --no-sandbox --use-angle=swiftshader --enable-unsafe-swiftshad
 # Chromium's own services (network time, component updates, sign-in) ask Google's hosts whatever the
 # page does; every other request can only have come from the page.
 page_requests() {
-  if grep -Ev '^[A-Z]+ (https?://)?(clients[0-9]*\.google\.com|update\.googleapis\.com|accounts\.google\.com|[a-z0-9-]+\.gvt1\.com)[:/]' "$work/requests.log"; then
+  if grep -Ev '^[A-Z]+ (https?://)?(clients[0-9]*\.google\.com|(update|optimizationguide-pa)\.googleapis\.com|accounts\.google\.com|[a-z0-9-]+\.gvt1\.com)[:/]' "$work/requests.log"; then
     echo "FAIL: the page asked the network for the above"; exit 1
   fi
 }

@@ -20,7 +20,6 @@ namespace vobench::synth {
 namespace {
 
 constexpr int kBorderPx = 16;
-constexpr int kPatch = 8;
 struct Band {
     double lo, hi;
     const char* name;
@@ -84,6 +83,43 @@ private:
     std::vector<std::string> order_;
 };
 
+// Plane fits z = a·u + b·v + c (centred pixel coordinates) in complete patch×patch squares; the RMS
+// residual of those that are planar (under 2 % of their range) by range band.
+void plane_fit_noise(const cv::Mat& depth_m, int patch, const std::string& key, const std::string& label, Accumulator& acc) {
+    const int H = depth_m.rows, W = depth_m.cols;
+    double suu = 0;
+    for (int i = 0; i < patch; ++i) suu += (i - (patch - 1) / 2.0) * (i - (patch - 1) / 2.0);
+    suu *= patch;
+    for (int y = 0; y + patch <= H; y += patch)
+        for (int x = 0; x + patch <= W; x += patch) {
+            double sz = 0, suz = 0, svz = 0;
+            bool complete = true;
+            for (int j = 0; j < patch && complete; ++j)
+                for (int i = 0; i < patch; ++i) {
+                    const float z = depth_m.at<float>(y + j, x + i);
+                    if (z <= 0) {
+                        complete = false;
+                        break;
+                    }
+                    sz += z;
+                    suz += (i - (patch - 1) / 2.0) * z;
+                    svz += (j - (patch - 1) / 2.0) * z;
+                }
+            if (!complete) continue;
+            const double c = sz / (patch * patch), a = suz / suu, b = svz / suu;
+            double ss = 0;
+            for (int j = 0; j < patch; ++j)
+                for (int i = 0; i < patch; ++i) {
+                    const double r = depth_m.at<float>(y + j, x + i) - (c + a * (i - (patch - 1) / 2.0) + b * (j - (patch - 1) / 2.0));
+                    ss += r * r;
+                }
+            const double rms = std::sqrt(ss / (patch * patch - 3));
+            if (rms > 0.02 * c) continue;  // not planar: an edge or clutter
+            for (const Band& band : kRangeBands)
+                if (c >= band.lo && c < band.hi) acc.sample(key + band.name, fmt::format("{}, {}, mm", label, band.name), rms * 1e3);
+        }
+}
+
 void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc) {
     const int W = depth_m.cols, H = depth_m.rows;
     cv::Mat missing = depth_m <= 0;
@@ -118,40 +154,10 @@ void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc
         cv::minMaxLoc(depth_m, nullptr, &mx);
         return mx;
     }());
-    // Plane fits in complete 8×8 patches: z = a·u + b·v + c on centred pixel coordinates.
-    double suu = 0;
-    for (int i = 0; i < kPatch; ++i) suu += (i - (kPatch - 1) / 2.0) * (i - (kPatch - 1) / 2.0);
-    suu *= kPatch;
-    for (int y = 0; y + kPatch <= H; y += kPatch)
-        for (int x = 0; x + kPatch <= W; x += kPatch) {
-            double sz = 0, suz = 0, svz = 0;
-            bool complete = true;
-            for (int j = 0; j < kPatch && complete; ++j)
-                for (int i = 0; i < kPatch; ++i) {
-                    const float z = depth_m.at<float>(y + j, x + i);
-                    if (z <= 0) {
-                        complete = false;
-                        break;
-                    }
-                    sz += z;
-                    suz += (i - (kPatch - 1) / 2.0) * z;
-                    svz += (j - (kPatch - 1) / 2.0) * z;
-                }
-            if (!complete) continue;
-            const double c = sz / (kPatch * kPatch), a = suz / suu, b = svz / suu;
-            double ss = 0;
-            for (int j = 0; j < kPatch; ++j)
-                for (int i = 0; i < kPatch; ++i) {
-                    const double r = depth_m.at<float>(y + j, x + i) - (c + a * (i - (kPatch - 1) / 2.0) + b * (j - (kPatch - 1) / 2.0));
-                    ss += r * r;
-                }
-            const double rms = std::sqrt(ss / (kPatch * kPatch - 3));
-            if (rms > 0.02 * c) continue;  // not planar: an edge or clutter
-            for (const Band& band : kRangeBands)
-                if (c >= band.lo && c < band.hi)
-                    acc.sample(std::string("depth_noise_mm.") + band.name, fmt::format("depth noise (plane fit RMS), {}, mm", band.name),
-                               rms * 1e3);
-        }
+    // Plane fits: 8×8 patches see the pixel noise; 32×32 patches also the part of it that is smooth
+    // across the image (it bends a fitted plane within 8 px only a little, but not within 32).
+    plane_fit_noise(depth_m, 8, "depth_noise_mm.", "depth noise (plane fit RMS)", acc);
+    plane_fit_noise(depth_m, 32, "depth_noise_32px_mm.", "depth noise (plane fit RMS, 32×32 patches)", acc);
 }
 
 void measure_image(const cv::Mat& bgr, Accumulator& acc) {

@@ -27,7 +27,8 @@ enum RenderSalt : uint64_t {
     kExposure,
     kTofNoise,
     kLostReturn,
-    kEdgeDropout
+    kEdgeDropout,
+    kCorrelatedDisparity
 };
 
 struct RenderedFrame {

@@ -34,6 +34,9 @@ SensorModel kinect1() {
     s.tone_contrast = 1.5;  // with +tone_curve: measured, saturated share 8.4 % rendered vs 8.7 % real (fr1/rpy)
     s.optics_sigma_px = 0.6;
     s.lateral_sigma_px = 0.3;
+    s.disparity_sigma_px = 0.0505;
+    s.disparity_correlated_sigma_px = 0.1;  // with +correlated_depth_noise (off by default; docs/synthetic-sensors.md)
+    s.disparity_correlation_px = 16;
     // Range: TUM's Kinect v1 depth reaches past 4.5 m and thins out there (fr1/rpy sample: 2.5 % of the
     // valid depth beyond 4 m, 32 % missing; `vobench synth stats`); Khoshelham & Elberink 2012 fit
     // their noise model to 5 m.
@@ -104,6 +107,7 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"highlights", &Effects::highlights},
                                                                             {"rolling_shutter", &Effects::rolling_shutter},
                                                                             {"depth_noise", &Effects::depth_noise},
+                                                                            {"correlated_depth_noise", &Effects::correlated_depth_noise},
                                                                             {"projector_shadow", &Effects::projector_shadow},
                                                                             {"depth_border", &Effects::depth_border},
                                                                             {"dark_dropout", &Effects::dark_dropout},

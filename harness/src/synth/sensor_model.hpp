@@ -37,16 +37,17 @@ struct Effects {
     bool highlights = true;       // specular reflection on glossy materials
     bool rolling_shutter = true;  // rows exposed one after another while the camera moves
     // Depth.
-    bool depth_noise = true;         // the sensor's axial and lateral noise (and Kinect v1's quantisation)
-    bool projector_shadow = true;    // Kinect v1: no depth where the projector's pattern cannot reach
-    bool depth_border = true;        // Kinect v1: the registered depth image's unmeasured border
-    bool dark_dropout = true;        // lost returns on dark, glossy and glass surfaces
-    bool glancing_dropout = true;    // no return beyond the glancing-angle limit
-    bool far_dropout = true;         // Kinect v1: returns thin out with range before the limit
-    bool edge_dropout = true;        // Kinect v1: the correlation window fails across depth steps
-    bool flying_pixels = true;       // Kinect v2: mixed depths at discontinuities
-    bool registration_error = true;  // Kinect v1: depth registered a little off the colour image
-    bool stamp_offsets = false;      // built-in trajectories: depth stamps off the colour stamps
+    bool depth_noise = true;              // the sensor's axial and lateral noise (and Kinect v1's quantisation)
+    bool correlated_depth_noise = false;  // Kinect v1: disparity errors that are smooth across the image
+    bool projector_shadow = true;         // Kinect v1: no depth where the projector's pattern cannot reach
+    bool depth_border = true;             // Kinect v1: the registered depth image's unmeasured border
+    bool dark_dropout = true;             // lost returns on dark, glossy and glass surfaces
+    bool glancing_dropout = true;         // no return beyond the glancing-angle limit
+    bool far_dropout = true;              // Kinect v1: returns thin out with range before the limit
+    bool edge_dropout = true;             // Kinect v1: the correlation window fails across depth steps
+    bool flying_pixels = true;            // Kinect v2: mixed depths at discontinuities
+    bool registration_error = true;       // Kinect v1: depth registered a little off the colour image
+    bool stamp_offsets = false;           // built-in trajectories: depth stamps off the colour stamps
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
@@ -69,6 +70,11 @@ struct SensorModel {
     double baseline_m = 0.075;   // projector–IR camera
     double disparity_step_px = 0.125;
     double disparity_sigma_px = 0.0505;  // with the quantisation: σ_z ≈ 1.425e-3·z² m (their eq. 16 fit)
+    // Effect correlated_depth_noise: a smooth disparity error field, new each frame, of this σ and
+    // correlation length (pixels of a 640-wide image) — the correlation window's errors are shared by
+    // neighbouring pixels, so they do not average out over a surface (docs/synthetic-sensors.md).
+    double disparity_correlated_sigma_px = 0.0;
+    double disparity_correlation_px = 16.0;
     Eigen::Vector3d projector_in_color{-0.05, 0.0, 0.0};
     // Time of flight (Fankhauser et al. 2015, axial noise fit, mm):
     //   σ_z(z, θ) = 1.5 − 0.5·z + 0.3·z² + 0.1·z^1.5·θ²/(π/2 − θ)²
