@@ -248,6 +248,8 @@ def synth_inputs(args, w):
             r"tum-fr7.*neither a camera name")
     refused("an unknown effect", ["synth", "--effects", "-motion_blurr", "--frames", "2", "--out", os.path.join(d, "out")],
             r"unknown effect 'motion_blurr'")
+    refused("a misspelt correlated_depth_noise", ["synth", "--effects", "+correlated_depth_nois", "--frames", "2", "--out",
+                                                 os.path.join(d, "out")], r"unknown effect 'correlated_depth_nois'.*correlated_depth_noise")
     # --stamps: no lists; unsorted list; stamps all outside the trajectory; with a built-in path.
     nolists = os.path.join(d, "stamps_none")
     os.makedirs(nolists)

@@ -1,5 +1,6 @@
 // The sensor models, checked statistically on rendered flat walls and step edges at known distances.
 #include "synth/renderer.hpp"
+#include "synth/smooth_field.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -189,4 +190,67 @@ TEST_CASE("tone_curve stretches the colour image's contrast about grey 136 and c
             }
     CHECK(stretched > 100);                        // the wall's texture spans grey levels, so the stretch was tested
     CHECK(parse_effects("").tone_curve == false);  // off unless asked for (docs/synthetic-sensors.md says why)
+}
+
+TEST_CASE("the smooth field has unit variance everywhere and is correlated over about its spacing", "[synth][sensor]") {
+    const double spacing = 16;
+    // Variance at points on and between the lattice points, over many independent fields.
+    for (double offset : {0.0, 4.0, 8.0}) {
+        double sum = 0, sum2 = 0;
+        const int n = 4000;
+        for (int k = 0; k < n; ++k) {
+            const double f = SmoothField(64, 64, spacing, 1000 + k).at(32 + offset, 32 + offset);
+            sum += f;
+            sum2 += f * f;
+        }
+        INFO("offset " << offset);
+        CHECK(std::abs(sum / n) < 0.06);
+        CHECK(sum2 / n == Approx(1.0).epsilon(0.08));
+    }
+    // Correlation of points 1 px and 4 spacings apart, over one large field.
+    const SmoothField field(2048, 2048, spacing, 3);
+    auto correlation = [&](int lag) {
+        double sxy = 0, sxx = 0, syy = 0;
+        for (int y = 0; y < 2048; y += 37)
+            for (int x = 0; x + lag < 2048; x += 23) {
+                const double a = field.at(x, y), b = field.at(x + lag, y);
+                sxy += a * b;
+                sxx += a * a;
+                syy += b * b;
+            }
+        return sxy / std::sqrt(sxx * syy);
+    };
+    CHECK(correlation(1) > 0.95);
+    CHECK(std::abs(correlation(64)) < 0.1);
+    CHECK(field.at(100.5, 200.25) == SmoothField(2048, 2048, spacing, 3).at(100.5, 200.25));  // deterministic in the seed
+}
+
+TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, off by default", "[synth][sensor]") {
+    CHECK(parse_effects("").correlated_depth_noise == false);
+    const double z = 2.0;
+    TestRig rig(z);
+    const auto depth = [&](const char* effects) {
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects(effects);
+        return Renderer(rig.scene, sensor, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+    };
+    const cv::Mat plain = depth(""), smooth = depth("+correlated_depth_noise");
+    // The depth error of a disparity error δd is z²·δd/(f·b): the added part's σ over the wall.
+    const SensorModel k1 = kinect1();
+    const double expected = z * z * k1.disparity_correlated_sigma_px / (k1.ir_focal_px * k1.baseline_m);
+    const Stats a = centre_stats(plain, z, 60), b = centre_stats(smooth, z, 60);
+    INFO("σ without " << a.std << " m, with " << b.std << " m, added part expected " << expected << " m");
+    // One 120-px window holds only a few correlation lengths, so the added σ is checked loosely.
+    CHECK(std::sqrt(std::max(0.0, b.std * b.std - a.std * a.std)) == Approx(expected).epsilon(0.6));
+    // Smooth: neighbouring pixels' differences grow far less than the spread does.
+    double neighbour_plain = 0, neighbour_smooth = 0;
+    int n = 0;
+    for (int v = plain.rows / 2 - 60; v < plain.rows / 2 + 60; ++v)
+        for (int u = plain.cols / 2 - 60; u < plain.cols / 2 + 60; ++u) {
+            neighbour_plain += std::abs(plain.at<float>(v, u + 1) - plain.at<float>(v, u));
+            neighbour_smooth += std::abs(smooth.at<float>(v, u + 1) - smooth.at<float>(v, u));
+            ++n;
+        }
+    CHECK(neighbour_smooth / n < 1.3 * neighbour_plain / n);
+    CHECK(b.std > 1.3 * a.std);
 }

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 namespace vobench::synth {
 
@@ -76,9 +77,11 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     const int right = W - static_cast<int>(std::lround(sensor_.border_right_px * px));
     const int top = static_cast<int>(std::lround(sensor_.border_top_px * px));
     const int bottom = H - static_cast<int>(std::lround(sensor_.border_bottom_px * px));
-    // The smooth part of the disparity error, a new field each frame.
+    // The smooth part of the disparity error, a new field each frame (built only when it is on).
     const double correlated_sigma = fx.depth_noise && fx.correlated_depth_noise ? sensor_.disparity_correlated_sigma_px : 0.0;
-    const SmoothField correlated(W, H, std::max(1.0, sensor_.disparity_correlation_px * px), hash(seed_, kCorrelatedDisparity, frame));
+    std::optional<SmoothField> correlated;
+    if (correlated_sigma > 0)
+        correlated.emplace(W, H, std::max(1.0, sensor_.disparity_correlation_px * px), hash(seed_, kCorrelatedDisparity, frame));
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
@@ -101,7 +104,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                 continue;
             }
             double d = fb / z + sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
-            if (correlated_sigma > 0) d += correlated_sigma * correlated.at(u, v);
+            if (correlated) d += correlated_sigma * correlated->at(u, v);
             const double dq = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
             if (dq <= 0) continue;
             out.depth_native.at<float>(v, u) = static_cast<float>(fb / dq);

@@ -34,7 +34,6 @@ SensorModel kinect1() {
     s.tone_contrast = 1.5;  // with +tone_curve: measured, saturated share 8.4 % rendered vs 8.7 % real (fr1/rpy)
     s.optics_sigma_px = 0.6;
     s.lateral_sigma_px = 0.3;
-    s.disparity_sigma_px = 0.0505;
     s.disparity_correlated_sigma_px = 0.1;  // with +correlated_depth_noise (off by default; docs/synthetic-sensors.md)
     s.disparity_correlation_px = 16;
     // Range: TUM's Kinect v1 depth reaches past 4.5 m and thins out there (fr1/rpy sample: 2.5 % of the
