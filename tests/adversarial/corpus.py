@@ -293,6 +293,24 @@ def synth_inputs(args, w):
     broken("an 8-bit depth image", lambda b: shutil.copy(first_rgb(b), first_depth(b)), r"not a 16-bit single-channel PNG")
     broken("a missing depth image", lambda b: os.remove(first_depth(b)), r"not a 16-bit single-channel PNG")
     broken("a hostile list line", lambda b: write(os.path.join(b, "rgb.txt"), HOSTILE + "\n"), r"rgb\.txt:1")
+    # synth stats --camera (the reference-consistency and ICP-conditioning statistics): the healthy
+    # folder gains them; a bad camera, a broken groundtruth.txt or a camera of another size is refused.
+    r = run([args.vobench, "synth", "stats", good, "--camera", "putk2-kinect1", "--json"], timeout=120)
+    stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
+    check("synth stats --camera: a healthy rendered folder gets the reference and ICP statistics",
+          stats.get("reference.depth_residual_pct.gap_1") is not None and stats.get("geometry.icp_condition") is not None,
+          r.stderr[-500:])
+    refused("stats with an unknown --camera", ["synth", "stats", good, "--camera", "tum-fr9"], r"tum-fr9.*neither a camera name")
+    small = os.path.join(d, "camera_small.txt")
+    write(small, "320 240 260 260 160 120\n")
+    refused("stats with a --camera of another image size", ["synth", "stats", good, "--camera", small], r"depth is 640×480, the camera's image 320×240")
+    gt_cases = {"nan_pose": "1.0 nan 0 0 0 0 0 1\n", "text": "1.0 a b c d e f g\n", "short_line": "1.0 0 0 0 0 0 1\n"}
+    for name, text in gt_cases.items():
+        b = os.path.join(d, "stats_gt_" + name)
+        shutil.copytree(good, b)
+        write(os.path.join(b, "groundtruth.txt"), text)
+        refused(f"stats --camera on a folder whose groundtruth.txt has a {name.replace('_', ' ')}",
+                ["synth", "stats", b, "--camera", "putk2-kinect1"], re.escape(os.path.join(b, "groundtruth.txt")) + r":1")
 
 
 def plot_inputs(args, w):

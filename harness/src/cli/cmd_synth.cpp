@@ -1,5 +1,6 @@
 // vobench synth — render a synthetic Kinect v1 / v2 RGB-D sequence with ground truth.
 #include "cli/commands.hpp"
+#include "synth/camera_catalog.hpp"
 #include "synth/frame_statistics.hpp"
 #include "synth/sequence_writer.hpp"
 
@@ -12,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <optional>
 
 namespace vobench::cli {
 
@@ -23,12 +25,18 @@ CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
     static std::vector<std::string> folders;
     static std::size_t max_frames = 0;
     static bool json = false;
+    static std::string camera;
     c->add_option("folders", folders, "TUM-layout folders (rgb.txt, depth.txt; depth 5000 units per metre)")->required();
     c->add_option("--max-frames", max_frames, "At most N colour-depth pairs per folder, evenly spaced (0: all)");
+    c->add_option("--camera", camera,
+                  "The colour camera the depth is registered to (a name, e.g. tum-fr1, or a camera file as for synth --camera): adds "
+                  "the ICP conditioning and, with groundtruth.txt, the depth residual under the reference's motion");
     c->add_flag("--json", json, "Print one JSON object");
     c->callback([&exit_code] {
+        std::optional<synth::CameraSpec> spec;
+        if (!camera.empty()) spec = synth::camera_by_name_or_file(camera);
         std::vector<synth::FolderStatistics> all;
-        for (const auto& f : folders) all.push_back(synth::measure_folder(f, max_frames));
+        for (const auto& f : folders) all.push_back(synth::measure_folder(f, max_frames, 5000.0, spec ? &spec->color : nullptr));
         if (json) {
             nlohmann::json j = nlohmann::json::array();
             for (const auto& s : all) {

@@ -1,6 +1,8 @@
 #include "synth/frame_statistics.hpp"
 
 #include "metrics/association.hpp"
+#include "metrics/trajectory_io.hpp"
+#include "synth/depth_geometry.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
 
@@ -14,6 +16,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 namespace vobench::synth {
@@ -226,7 +229,8 @@ void score_edge_shifts(const cv::Mat& depth_m, const cv::Mat& grey, ShiftScores&
 
 }  // namespace
 
-FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale) {
+FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale,
+                                const PinholeCamera* camera) {
     const auto rgb = tum::parse_list(read_file(folder / "rgb.txt"), (folder / "rgb.txt").string());
     const auto depth = tum::parse_list(read_file(folder / "depth.txt"), (folder / "depth.txt").string());
     std::vector<double> rgb_stamps, depth_stamps;
@@ -238,6 +242,8 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     for (std::size_t k = 0; k < n; ++k) chosen.push_back(n == pairs.size() ? k : k * pairs.size() / n);
     Accumulator acc;
     ShiftScores shifts{};
+    std::optional<DepthRays> rays;
+    if (camera) rays.emplace(*camera);
     for (std::size_t k : chosen) {
         const auto& m = pairs[k];
         const auto color_path = folder / rgb[m.first].path, depth_path = folder / depth[m.second].path;
@@ -254,6 +260,15 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         measure_depth(depth_m, grey, acc);
         score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
+        if (rays) {
+            if (depth_m.cols != camera->width || depth_m.rows != camera->height)
+                throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth_m.cols) + "×" +
+                                         std::to_string(depth_m.rows) + ", the camera's image " + std::to_string(camera->width) + "×" +
+                                         std::to_string(camera->height));
+            const IcpConditioning c = icp_conditioning(depth_m, *rays);
+            acc.sample("geometry.icp_condition", "ICP conditioning λmax/λmin (Gelfand 2003; median)", c.condition);
+            acc.sample("geometry.icp_weakest", "ICP weakest constraint λmin, m² (median)", c.weakest);
+        }
         const double offset_ms = std::abs(rgb_stamps[m.first] - depth_stamps[m.second]) * 1e3;
         acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);
         acc.maximum("stamps.offset_max_ms", "colour–depth stamp offset, largest |Δt|, ms", offset_ms);
@@ -270,6 +285,18 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     if (!chosen.empty()) {
         acc.mean("registration.edge_shift_x_px", "depth edges right of colour edges, px (best overlap)", best_x);
         acc.mean("registration.edge_shift_y_px", "depth edges below colour edges, px (best overlap)", best_y);
+    }
+    if (rays && std::filesystem::exists(folder / "groundtruth.txt")) {
+        // Every depth image in the list's order (consecutive frames), not only the associated pairs.
+        std::vector<std::filesystem::path> depth_paths;
+        for (const auto& e : depth) depth_paths.push_back(folder / e.path);
+        const auto reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
+        for (const auto& g : reference_consistency(depth_stamps, depth_paths, reference, *rays, {1, 4, 16}, max_frames, depth_scale))
+            if (g.pairs > 0)
+                acc.mean(fmt::format("reference.depth_residual_pct.gap_{}", g.gap),
+                         fmt::format("depth residual under the reference's motion, gap {} frame{}, % of z (median)", g.gap,
+                                     g.gap == 1 ? "" : "s"),
+                         g.median_pct);
     }
     return {folder, chosen.size(), acc.result()};
 }

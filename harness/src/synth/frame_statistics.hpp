@@ -18,7 +18,12 @@
 //   colour–depth stamp offset: mean and largest |t_rgb − t_depth| of the pairs, milliseconds;
 //   registration: the shift (±4 px) of the depth-step map (centred steps over 10 % of z) that best
 //     overlaps the colour-edge map (Sobel > 60), pooled over frames — depth–colour misregistration.
+// With a camera model (`--camera`), also (depth_geometry.hpp): the ICP conditioning of each frame's
+// depth, and — when the folder has groundtruth.txt — the depth residual under the reference's motion at
+// gaps of 1, 4 and 16 frames (how far the ground truth disagrees with the images).
 #pragma once
+
+#include "synth/sensor_model.hpp"
 
 #include <filesystem>
 #include <string>
@@ -41,7 +46,9 @@ struct FolderStatistics {
 // Reads rgb.txt, depth.txt (16-bit PNG, `depth_scale` units per metre) and the images. At most
 // `max_frames` pairs, evenly spaced (0: all). Throws std::runtime_error naming the file that cannot
 // be read; a frame whose images cannot be decoded is an error too (a statistic must not silently
-// skip data).
-FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames = 0, double depth_scale = 5000.0);
+// skip data), and so is a groundtruth.txt that cannot be read (naming file:line). `camera`: the colour
+// camera the depth is registered to, or null to leave out the statistics that need one.
+FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames = 0, double depth_scale = 5000.0,
+                                const PinholeCamera* camera = nullptr);
 
 }  // namespace vobench::synth

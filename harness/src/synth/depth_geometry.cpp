@@ -1,0 +1,188 @@
+#include "synth/depth_geometry.hpp"
+
+#include "synth/frame_plan.hpp"
+
+#include <Eigen/Eigenvalues>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+namespace vobench::synth {
+namespace {
+
+constexpr int kStridePx = 4;              // sampled pixels (consistency) and normal baseline (conditioning)
+constexpr double kOcclusion = 0.05;       // relative residuals beyond this are occlusions, not errors
+constexpr double kSmooth = 0.03;          // a bilinear lookup needs its 2×2 depths within 3 % of each other
+constexpr std::size_t kMinOverlap = 500;  // points a pair needs to count
+constexpr double kIcpRange = 4.0;         // metres: OpenCV's ICP default maximum depth
+constexpr double kLeverArm = 2.0;         // metres: rotation rows of J in length units
+
+cv::Mat camera_matrix(const PinholeCamera& c) { return (cv::Mat_<double>(3, 3) << c.fx, 0, c.cx, 0, c.fy, c.cy, 0, 0, 1); }
+
+cv::Mat distortion(const PinholeCamera& c) {
+    cv::Mat d(1, c.distortion_count, CV_64F);
+    for (int k = 0; k < c.distortion_count; ++k) d.at<double>(0, k) = c.distortion[static_cast<std::size_t>(k)];
+    return d;
+}
+
+double median_of(std::vector<double> v) {
+    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+    std::nth_element(v.begin(), mid, v.end());
+    return *mid;
+}
+
+cv::Mat read_depth_m(const std::filesystem::path& path, const PinholeCamera& camera, double depth_scale) {
+    const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(path.string() + ": not a 16-bit single-channel PNG");
+    if (raw.cols != camera.width || raw.rows != camera.height)
+        throw std::runtime_error(path.string() + ": depth is " + std::to_string(raw.cols) + "×" + std::to_string(raw.rows) +
+                                 ", the camera's image " + std::to_string(camera.width) + "×" + std::to_string(camera.height));
+    cv::Mat depth_m;
+    raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
+    return depth_m;
+}
+
+// Bilinear depth at (u, v) when its four neighbours are measured and lie within kSmooth of each other.
+bool smooth_depth(const cv::Mat& depth_m, float u, float v, double& z) {
+    const int u0 = static_cast<int>(std::floor(u)), v0 = static_cast<int>(std::floor(v));
+    if (u0 < 0 || v0 < 0 || u0 + 1 >= depth_m.cols || v0 + 1 >= depth_m.rows) return false;
+    const float z00 = depth_m.at<float>(v0, u0), z01 = depth_m.at<float>(v0, u0 + 1), z10 = depth_m.at<float>(v0 + 1, u0),
+                z11 = depth_m.at<float>(v0 + 1, u0 + 1);
+    const float lo = std::min({z00, z01, z10, z11}), hi = std::max({z00, z01, z10, z11});
+    if (lo <= 0 || hi - lo > kSmooth * lo) return false;
+    const double a = u - u0, b = v - v0;
+    z = (1 - a) * (1 - b) * z00 + a * (1 - b) * z01 + (1 - a) * b * z10 + a * b * z11;
+    return true;
+}
+
+// The median |relative residual| of frame i's depth moved by `j_from_i` onto frame j's; NaN when the
+// two overlap in fewer than kMinOverlap points.
+double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays) {
+    std::vector<cv::Point3f> moved;
+    for (int v = 0; v < depth_i.rows; v += kStridePx)
+        for (int u = 0; u < depth_i.cols; u += kStridePx) {
+            const float z = depth_i.at<float>(v, u);
+            if (z <= 0) continue;
+            const cv::Point3d p = rays.point(u, v, z);
+            const Eigen::Vector3d q = j_from_i * Eigen::Vector3d(p.x, p.y, p.z);
+            if (q.z() > 0.05) moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+        }
+    if (moved.size() < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
+    const auto pixels = rays.project(moved);
+    std::vector<double> residuals;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        double measured = 0;
+        if (!smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) continue;
+        const double r = std::abs(measured - moved[k].z) / moved[k].z;
+        if (r < kOcclusion) residuals.push_back(r);
+    }
+    return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(std::move(residuals));
+}
+
+}  // namespace
+
+DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
+    if (camera.width <= 0 || camera.height <= 0 || !(camera.fx > 0) || !(camera.fy > 0))
+        throw std::invalid_argument("depth geometry: the camera has no valid size or focal length");
+    std::vector<cv::Point2f> pixels, normalised;
+    pixels.reserve(static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height));
+    for (int v = 0; v < camera.height; ++v)
+        for (int u = 0; u < camera.width; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
+    cv::undistortPoints(pixels, normalised, camera_matrix(camera), distortion(camera));
+    x_.create(camera.height, camera.width, CV_32F);
+    y_.create(camera.height, camera.width, CV_32F);
+    for (int v = 0; v < camera.height; ++v)
+        for (int u = 0; u < camera.width; ++u) {
+            const cv::Point2f& n =
+                normalised[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(u)];
+            x_.at<float>(v, u) = n.x;
+            y_.at<float>(v, u) = n.y;
+        }
+}
+
+std::vector<cv::Point2f> DepthRays::project(const std::vector<cv::Point3f>& points) const {
+    std::vector<cv::Point2f> out;
+    if (points.empty()) return out;
+    const cv::Mat zero = cv::Mat::zeros(3, 1, CV_64F);
+    cv::projectPoints(points, zero, zero, camera_matrix(camera_), distortion(camera_), out);
+    return out;
+}
+
+std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& depth_stamps,
+                                                    const std::vector<std::filesystem::path>& depth_paths,
+                                                    const metrics::Trajectory& reference, const DepthRays& rays,
+                                                    const std::vector<int>& gaps, std::size_t max_pairs, double depth_scale) {
+    const std::size_t n = std::min(depth_stamps.size(), depth_paths.size());
+    std::map<std::size_t, cv::Mat> cache;  // decoded depth images still ahead of the first pair
+    const auto depth = [&](std::size_t k) -> const cv::Mat& {
+        auto it = cache.find(k);
+        if (it == cache.end()) it = cache.emplace(k, read_depth_m(depth_paths[k], rays.camera(), depth_scale)).first;
+        return it->second;
+    };
+    std::vector<std::vector<double>> per_gap(gaps.size());
+    const std::size_t starts = max_pairs > 0 ? std::min(max_pairs, n) : n;
+    for (std::size_t s = 0; s < starts; ++s) {
+        const std::size_t i = starts == n ? s : s * n / starts;
+        cache.erase(cache.begin(), cache.lower_bound(i));
+        Eigen::Isometry3d pose_i;
+        if (!interpolate_pose(reference, depth_stamps[i], pose_i)) continue;
+        for (std::size_t g = 0; g < gaps.size(); ++g) {
+            const std::size_t j = i + static_cast<std::size_t>(gaps[g]);
+            Eigen::Isometry3d pose_j;
+            if (gaps[g] <= 0 || j >= n || !interpolate_pose(reference, depth_stamps[j], pose_j)) continue;
+            const double r = pair_residual(depth(i), depth(j), pose_j.inverse() * pose_i, rays);
+            if (std::isfinite(r)) per_gap[g].push_back(r * 100.0);
+        }
+    }
+    std::vector<ConsistencyAtGap> out;
+    for (std::size_t g = 0; g < gaps.size(); ++g) out.push_back({gaps[g], median_of(per_gap[g]), per_gap[g].size()});
+    return out;
+}
+
+IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays) {
+    const int s = kStridePx;
+    Eigen::Matrix<double, 6, 6> info = Eigen::Matrix<double, 6, 6>::Zero();
+    std::size_t points = 0;
+    const auto valid = [&](int u, int v) {
+        const float z = depth_m.at<float>(v, u);
+        return z > 0 && z <= kIcpRange;
+    };
+    for (int v = s; v + s < depth_m.rows; v += s)
+        for (int u = s; u + s < depth_m.cols; u += s) {
+            if (!valid(u, v) || !valid(u - s, v) || !valid(u + s, v) || !valid(u, v - s) || !valid(u, v + s)) continue;
+            const float z = depth_m.at<float>(v, u);
+            const float zl = depth_m.at<float>(v, u - s), zr = depth_m.at<float>(v, u + s), zt = depth_m.at<float>(v - s, u),
+                        zb = depth_m.at<float>(v + s, u);
+            if (std::abs(zr - zl) > kOcclusion * z || std::abs(zb - zt) > kOcclusion * z) continue;  // a depth edge
+            const auto to_eigen = [](const cv::Point3d& p) { return Eigen::Vector3d(p.x, p.y, p.z); };
+            const Eigen::Vector3d p = to_eigen(rays.point(u, v, z));
+            const Eigen::Vector3d du = to_eigen(rays.point(u + s, v, zr)) - to_eigen(rays.point(u - s, v, zl));
+            const Eigen::Vector3d dv = to_eigen(rays.point(u, v + s, zb)) - to_eigen(rays.point(u, v - s, zt));
+            Eigen::Vector3d normal = du.cross(dv);
+            if (normal.norm() <= 0) continue;
+            normal.normalize();
+            Eigen::Matrix<double, 6, 1> J;
+            J << p.cross(normal) / kLeverArm, normal;
+            info += J * J.transpose();
+            ++points;
+        }
+    IcpConditioning out;
+    out.points = points;
+    if (points < 6) {
+        out.condition = std::numeric_limits<double>::infinity();
+        return out;
+    }
+    info /= static_cast<double>(points);
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, 6, 6>> eig(info, Eigen::EigenvaluesOnly);
+    out.weakest = std::max(eig.eigenvalues()(0), 0.0);
+    out.condition = out.weakest > 0 ? eig.eigenvalues()(5) / out.weakest : std::numeric_limits<double>::infinity();
+    return out;
+}
+
+}  // namespace vobench::synth

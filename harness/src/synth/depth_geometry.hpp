@@ -1,0 +1,70 @@
+// depth_geometry.hpp — the statistics of `vobench synth stats` that need the camera model (issue #15):
+// how well a folder's ground truth agrees with its own depth images, and how well its depth
+// constrains a geometric alignment. Both are measured the same way on real and rendered folders.
+//
+// Reference consistency. Frame i's depth, moved by the reference's relative motion T_j⁻¹ T_i (poses
+// interpolated at the depth stamps) into frame j = i + gap, should land on frame j's depth. The
+// residual |z_j(π(x)) − z(x)| / z(x) of each point (every 4th pixel, bilinear depth on a smooth 2×2
+// neighbourhood, residuals over 5 % dropped as occlusions) has a median per pair; the statistic is the
+// median over pairs, in per cent. With an exact reference it stays at the depth noise whatever the
+// gap; when it grows with the gap, the reference disagrees with the images by more the further the
+// camera moved (a hand–eye calibration error of the motion-capture rig, for instance, grows with the
+// rotation between the two frames). A rendering has an exact reference, so this is the measurement
+// behind any model of a real reference's error.
+//
+// ICP conditioning (Gelfand et al. 2003, "Geometrically stable sampling for the ICP algorithm"): the
+// 6×6 point-to-plane information matrix Σ J Jᵀ over the frame's points, J = [(p × n)/L; n] with
+// L = 2 m so that rotation is in metres at a typical range. Its smallest eigenvalue is how strongly the
+// worst-constrained motion is pinned down; λmax/λmin how lopsided the constraints are (a single plane:
+// unbounded). Normals from central differences 4 px apart; points to 4 m (OpenCV's ICP range).
+#pragma once
+
+#include "metrics/pose.hpp"
+#include "synth/sensor_model.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <filesystem>
+#include <vector>
+
+namespace vobench::synth {
+
+// Every pixel's viewing ray at unit depth, (x, y, 1), through the camera's distortion model.
+class DepthRays {
+public:
+    explicit DepthRays(const PinholeCamera& camera);
+    const PinholeCamera& camera() const { return camera_; }
+    // The point at depth z (metres) seen at pixel (u, v).
+    cv::Point3d point(int u, int v, double z) const { return {x_.at<float>(v, u) * z, y_.at<float>(v, u) * z, z}; }
+    // Pixel positions of camera-frame points (through the distortion model).
+    std::vector<cv::Point2f> project(const std::vector<cv::Point3f>& points) const;
+
+private:
+    PinholeCamera camera_;
+    cv::Mat x_, y_;  // CV_32F, height × width
+};
+
+struct ConsistencyAtGap {
+    int gap = 0;            // frames between the two depth images of a pair
+    double median_pct = 0;  // median over pairs of the pair's median |relative residual|, per cent (NaN: no pair)
+    std::size_t pairs = 0;  // pairs that had enough overlap (≥ 500 points)
+};
+
+// For each gap, pairs (k, k + gap) of `depth_stamps`/`depth_paths` (sorted, consecutive frames of the
+// folder) starting at up to `max_pairs` evenly spaced k (0: every k). Pairs whose stamps the reference
+// does not cover are left out. Throws std::runtime_error naming a depth image that cannot be decoded.
+std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& depth_stamps,
+                                                    const std::vector<std::filesystem::path>& depth_paths,
+                                                    const metrics::Trajectory& reference, const DepthRays& rays,
+                                                    const std::vector<int>& gaps, std::size_t max_pairs, double depth_scale);
+
+struct IcpConditioning {
+    double weakest = 0;    // smallest eigenvalue of the information matrix per point (m²)
+    double condition = 0;  // largest ÷ smallest eigenvalue (infinity when degenerate)
+    std::size_t points = 0;
+};
+
+// One frame's conditioning; `depth_m` in metres (CV_32F, 0 = missing), the size of the camera's image.
+IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays);
+
+}  // namespace vobench::synth
