@@ -13,6 +13,6 @@ for k in 1 2 3 4 5; do
   "$vobench" synth --sensor kinect1 --camera tum-fr1 --trajectory "$seq/groundtruth.txt" --trajectory-format tum --stamps "$seq" \
     --layout tum --seed "$k" --out "$work/rendered/seed$k/rgbd_dataset_freiburg1_rpy"
 done
-"$vobench" synth stats "$seq" "$work"/rendered/seed{1,2,3,4,5}/rgbd_dataset_freiburg1_rpy
+"$vobench" synth stats --camera tum-fr1 "$seq" "$work"/rendered/seed{1,2,3,4,5}/rgbd_dataset_freiburg1_rpy
 VOBENCH_REAL=$real VOBENCH_RENDERED=$work/rendered "$vobench" run "$src/configs/sim_to_real.yaml" -j 2 --out "$work/sweep" > "$work/sweep.log"
 python3 "$src/tests/scripts/sim_to_real_compare.py" "$vobench" "$work/sweep"
