@@ -40,9 +40,7 @@ double median_of(std::vector<double> v) {
 cv::Mat read_depth_m(const std::filesystem::path& path, const PinholeCamera& camera, double depth_scale) {
     const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
     if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(path.string() + ": not a 16-bit single-channel PNG");
-    if (raw.cols != camera.width || raw.rows != camera.height)
-        throw std::runtime_error(path.string() + ": depth is " + std::to_string(raw.cols) + "×" + std::to_string(raw.rows) +
-                                 ", the camera's image " + std::to_string(camera.width) + "×" + std::to_string(camera.height));
+    require_camera_size(path, raw, camera);
     cv::Mat depth_m;
     raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
     return depth_m;
@@ -86,6 +84,12 @@ double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen
 }
 
 }  // namespace
+
+void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera) {
+    if (depth.cols != camera.width || depth.rows != camera.height)
+        throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth.cols) + "×" + std::to_string(depth.rows) +
+                                 ", the camera's image " + std::to_string(camera.width) + "×" + std::to_string(camera.height));
+}
 
 DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     if (camera.width <= 0 || camera.height <= 0 || !(camera.fx > 0) || !(camera.fy > 0))

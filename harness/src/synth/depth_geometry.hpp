@@ -44,6 +44,9 @@ private:
     cv::Mat x_, y_;  // CV_32F, height × width
 };
 
+// Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.
+void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera);
+
 struct ConsistencyAtGap {
     int gap = 0;            // frames between the two depth images of a pair
     double median_pct = 0;  // median over pairs of the pair's median |relative residual|, per cent (NaN: no pair)

@@ -261,10 +261,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
         if (rays) {
-            if (depth_m.cols != camera->width || depth_m.rows != camera->height)
-                throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth_m.cols) + "×" +
-                                         std::to_string(depth_m.rows) + ", the camera's image " + std::to_string(camera->width) + "×" +
-                                         std::to_string(camera->height));
+            require_camera_size(depth_path, depth_m, *camera);
             const IcpConditioning c = icp_conditioning(depth_m, *rays);
             acc.sample("geometry.icp_condition", "ICP conditioning λmax/λmin (Gelfand 2003; median)", c.condition);
             acc.sample("geometry.icp_weakest", "ICP weakest constraint λmin, m² (median)", c.weakest);
