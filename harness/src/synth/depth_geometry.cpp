@@ -1,6 +1,8 @@
 #include "synth/depth_geometry.hpp"
 
+#include "metrics/statistics.hpp"
 #include "synth/frame_plan.hpp"
+#include "synth/renderer.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <opencv2/calib3d.hpp>
@@ -30,11 +32,8 @@ cv::Mat distortion(const PinholeCamera& c) {
     return d;
 }
 
-double median_of(std::vector<double> v) {
-    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-    const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-    std::nth_element(v.begin(), mid, v.end());
-    return *mid;
+double median_of(const std::vector<double>& v) {
+    return v.empty() ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(v).median;
 }
 
 cv::Mat read_depth_m(const std::filesystem::path& path, const PinholeCamera& camera, double depth_scale) {
@@ -67,8 +66,7 @@ double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen
         for (int u = 0; u < depth_i.cols; u += kStridePx) {
             const float z = depth_i.at<float>(v, u);
             if (z <= 0) continue;
-            const cv::Point3d p = rays.point(u, v, z);
-            const Eigen::Vector3d q = j_from_i * Eigen::Vector3d(p.x, p.y, p.z);
+            const Eigen::Vector3d q = j_from_i * rays.point(u, v, z);
             if (q.z() > 0.05) moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
         }
     if (moved.size() < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
@@ -80,7 +78,7 @@ double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen
         const double r = std::abs(measured - moved[k].z) / moved[k].z;
         if (r < kOcclusion) residuals.push_back(r);
     }
-    return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(std::move(residuals));
+    return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
 }
 
 }  // namespace
@@ -94,20 +92,9 @@ void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat&
 DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     if (camera.width <= 0 || camera.height <= 0 || !(camera.fx > 0) || !(camera.fy > 0))
         throw std::invalid_argument("depth geometry: the camera has no valid size or focal length");
-    std::vector<cv::Point2f> pixels, normalised;
-    pixels.reserve(static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height));
-    for (int v = 0; v < camera.height; ++v)
-        for (int u = 0; u < camera.width; ++u) pixels.emplace_back(static_cast<float>(u), static_cast<float>(v));
-    cv::undistortPoints(pixels, normalised, camera_matrix(camera), distortion(camera));
-    x_.create(camera.height, camera.width, CV_32F);
-    y_.create(camera.height, camera.width, CV_32F);
-    for (int v = 0; v < camera.height; ++v)
-        for (int u = 0; u < camera.width; ++u) {
-            const cv::Point2f& n =
-                normalised[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera.width) + static_cast<std::size_t>(u)];
-            x_.at<float>(v, u) = n.x;
-            y_.at<float>(v, u) = n.y;
-        }
+    const Renderer::RayMap map = Renderer::make_ray_map(camera);
+    rays_.reserve(map.dirs.size());
+    for (const Eigen::Vector3d& d : map.dirs) rays_.push_back(d / d.z());
 }
 
 std::vector<cv::Point2f> DepthRays::project(const std::vector<cv::Point3f>& points) const {
@@ -164,10 +151,9 @@ IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays) 
             const float zl = depth_m.at<float>(v, u - s), zr = depth_m.at<float>(v, u + s), zt = depth_m.at<float>(v - s, u),
                         zb = depth_m.at<float>(v + s, u);
             if (std::abs(zr - zl) > kOcclusion * z || std::abs(zb - zt) > kOcclusion * z) continue;  // a depth edge
-            const auto to_eigen = [](const cv::Point3d& p) { return Eigen::Vector3d(p.x, p.y, p.z); };
-            const Eigen::Vector3d p = to_eigen(rays.point(u, v, z));
-            const Eigen::Vector3d du = to_eigen(rays.point(u + s, v, zr)) - to_eigen(rays.point(u - s, v, zl));
-            const Eigen::Vector3d dv = to_eigen(rays.point(u, v + s, zb)) - to_eigen(rays.point(u, v - s, zt));
+            const Eigen::Vector3d p = rays.point(u, v, z);
+            const Eigen::Vector3d du = rays.point(u + s, v, zr) - rays.point(u - s, v, zl);
+            const Eigen::Vector3d dv = rays.point(u, v + s, zb) - rays.point(u, v - s, zt);
             Eigen::Vector3d normal = du.cross(dv);
             if (normal.norm() <= 0) continue;
             normal.normalize();

@@ -22,6 +22,7 @@
 #include "metrics/pose.hpp"
 #include "synth/sensor_model.hpp"
 
+#include <Eigen/Core>
 #include <opencv2/core.hpp>
 
 #include <filesystem>
@@ -29,19 +30,23 @@
 
 namespace vobench::synth {
 
-// Every pixel's viewing ray at unit depth, (x, y, 1), through the camera's distortion model.
+// Every pixel's viewing ray at unit depth, (x, y, 1), through the camera's distortion model — the
+// renderer's own ray map (Renderer::make_ray_map), so a rendering is measured with the rays it was
+// cast along.
 class DepthRays {
 public:
     explicit DepthRays(const PinholeCamera& camera);
     const PinholeCamera& camera() const { return camera_; }
     // The point at depth z (metres) seen at pixel (u, v).
-    cv::Point3d point(int u, int v, double z) const { return {x_.at<float>(v, u) * z, y_.at<float>(v, u) * z, z}; }
+    Eigen::Vector3d point(int u, int v, double z) const {
+        return rays_[static_cast<std::size_t>(v) * static_cast<std::size_t>(camera_.width) + static_cast<std::size_t>(u)] * z;
+    }
     // Pixel positions of camera-frame points (through the distortion model).
     std::vector<cv::Point2f> project(const std::vector<cv::Point3f>& points) const;
 
 private:
     PinholeCamera camera_;
-    cv::Mat x_, y_;  // CV_32F, height × width
+    std::vector<Eigen::Vector3d> rays_;  // row-major, z = 1
 };
 
 // Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.

@@ -53,12 +53,15 @@ public:
 
     const SensorModel& sensor() const { return sensor_; }
 
-private:
+    // Every pixel's ray through the camera's distortion model (also what `synth stats --camera`
+    // measures depth with, so a rendering is measured along the rays it was cast on).
     struct RayMap {
         int width = 0, height = 0;
         std::vector<Eigen::Vector3d> dirs;  // unit ray direction per pixel, camera frame
     };
     static RayMap make_ray_map(const PinholeCamera& camera);
+
+private:
     // The camera pose at which each image row is exposed: a rolling shutter reads row v out at
     // (v / rows − ½)·readout_s around the frame's stamp, while the camera moves from `pose` towards
     // `next_pose` (reached `interval_s` later). All rows share `pose` when readout_s is 0.
