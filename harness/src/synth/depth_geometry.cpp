@@ -13,6 +13,7 @@
 #include <limits>
 #include <map>
 #include <stdexcept>
+#include <utility>
 
 namespace vobench::synth {
 namespace {
@@ -34,15 +35,6 @@ cv::Mat distortion(const PinholeCamera& c) {
 
 double median_of(const std::vector<double>& v) {
     return v.empty() ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(v).median;
-}
-
-cv::Mat read_depth_m(const std::filesystem::path& path, const PinholeCamera& camera, double depth_scale) {
-    const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
-    if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(path.string() + ": not a 16-bit single-channel PNG");
-    require_camera_size(path, raw, camera);
-    cv::Mat depth_m;
-    raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
-    return depth_m;
 }
 
 // Bilinear depth at (u, v) when its four neighbours are measured and lie within kSmooth of each other.
@@ -83,6 +75,14 @@ double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen
 
 }  // namespace
 
+cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale) {
+    const cv::Mat raw = cv::imread(path.string(), cv::IMREAD_UNCHANGED);
+    if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(path.string() + ": not a 16-bit single-channel PNG");
+    cv::Mat depth_m;
+    raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
+    return depth_m;
+}
+
 void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera) {
     if (depth.cols != camera.width || depth.rows != camera.height)
         throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth.cols) + "×" + std::to_string(depth.rows) +
@@ -113,7 +113,11 @@ std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& d
     std::map<std::size_t, cv::Mat> cache;  // decoded depth images still ahead of the first pair
     const auto depth = [&](std::size_t k) -> const cv::Mat& {
         auto it = cache.find(k);
-        if (it == cache.end()) it = cache.emplace(k, read_depth_m(depth_paths[k], rays.camera(), depth_scale)).first;
+        if (it == cache.end()) {
+            cv::Mat depth_m = read_depth_metres(depth_paths[k], depth_scale);
+            require_camera_size(depth_paths[k], depth_m, rays.camera());
+            it = cache.emplace(k, std::move(depth_m)).first;
+        }
         return it->second;
     };
     std::vector<std::vector<double>> per_gap(gaps.size());

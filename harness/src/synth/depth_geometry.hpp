@@ -49,6 +49,10 @@ private:
     std::vector<Eigen::Vector3d> rays_;  // row-major, z = 1
 };
 
+// A 16-bit depth PNG in metres (CV_32F, 0 = missing; `depth_scale` units per metre). Throws
+// std::runtime_error naming `path` when it is missing or not a 16-bit single-channel image.
+cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale);
+
 // Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.
 void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera);
 

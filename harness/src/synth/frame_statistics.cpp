@@ -249,13 +249,12 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         const auto color_path = folder / rgb[m.first].path, depth_path = folder / depth[m.second].path;
         const cv::Mat bgr = cv::imread(color_path.string(), cv::IMREAD_COLOR);
         if (bgr.empty()) throw std::runtime_error(color_path.string() + ": cannot be decoded as an image");
-        const cv::Mat raw = cv::imread(depth_path.string(), cv::IMREAD_UNCHANGED);
-        if (raw.empty() || raw.type() != CV_16UC1) throw std::runtime_error(depth_path.string() + ": not a 16-bit single-channel PNG");
-        if (raw.size() != bgr.size())
-            throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(raw.cols) + "×" + std::to_string(raw.rows) +
-                                     ", colour " + std::to_string(bgr.cols) + "×" + std::to_string(bgr.rows) + " (not registered)");
-        cv::Mat depth_m, grey;
-        raw.convertTo(depth_m, CV_32F, 1.0 / depth_scale);
+        const cv::Mat depth_m = read_depth_metres(depth_path, depth_scale);
+        if (depth_m.size() != bgr.size())
+            throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth_m.cols) + "×" +
+                                     std::to_string(depth_m.rows) + ", colour " + std::to_string(bgr.cols) + "×" +
+                                     std::to_string(bgr.rows) + " (not registered)");
+        cv::Mat grey;
         cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
         measure_depth(depth_m, grey, acc);
         score_edge_shifts(depth_m, grey, shifts);
