@@ -250,6 +250,8 @@ def synth_inputs(args, w):
             r"unknown effect 'motion_blurr'")
     refused("a misspelt correlated_depth_noise", ["synth", "--effects", "+correlated_depth_nois", "--frames", "2", "--out",
                                                  os.path.join(d, "out")], r"unknown effect 'correlated_depth_nois'.*correlated_depth_noise")
+    refused("a misspelt stamp_latency", ["synth", "--effects", "-stamp_latncy", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"unknown effect 'stamp_latncy'.*stamp_latency")
     # --stamps: no lists; unsorted list; stamps all outside the trajectory; with a built-in path.
     nolists = os.path.join(d, "stamps_none")
     os.makedirs(nolists)
@@ -311,6 +313,23 @@ def synth_inputs(args, w):
         write(os.path.join(b, "groundtruth.txt"), text)
         refused(f"stats --camera on a folder whose groundtruth.txt has a {name.replace('_', ' ')}",
                 ["synth", "stats", b, "--camera", "putk2-kinect1"], re.escape(os.path.join(b, "groundtruth.txt")) + r":1")
+    # A reference that covers none of the frames: the statistics that need it are left out (no made-up
+    # latency or residual), the rest are measured. (10 frames: the latency scan needs pairs 4 frames
+    # apart whose stamps the reference covers 40 ms before and 10 ms after; the healthy folder has it.)
+    ten = os.path.join(d, "stats_ten")
+    r = run([args.vobench, "synth", "--frames", "10", "--layout", "tum", "--out", ten], timeout=300)
+    r = run([args.vobench, "synth", "stats", ten, "--camera", "putk2-kinect1", "--json"], timeout=120)
+    stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
+    check("synth stats --camera: a healthy 10-frame folder gets the stamp latencies", "stamps.depth_latency_ms" in stats and
+          "stamps.color_latency_ms" in stats, r.stderr[-500:] + str(sorted(stats)))
+    b = os.path.join(d, "stats_gt_elsewhere")
+    shutil.copytree(ten, b)
+    write(os.path.join(b, "groundtruth.txt"), "5000.0 0 0 0 0 0 0 1\n5000.1 0 0 0 0 0 0 1\n")
+    r = run([args.vobench, "synth", "stats", b, "--camera", "putk2-kinect1", "--json"], timeout=120)
+    stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
+    check("synth stats --camera: a groundtruth.txt beside none of the frames leaves out the reference and latency statistics",
+          r.returncode == 0 and "geometry.icp_condition" in stats and
+          not any(k.startswith("reference.") or k.endswith("_latency_ms") for k in stats), r.stderr[-500:] + str(sorted(stats)))
 
 
 def plot_inputs(args, w):

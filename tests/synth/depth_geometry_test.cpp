@@ -2,6 +2,7 @@
 // ray-cast here from a box room with known poses (exact, then with a known hand–eye error), and on the
 // real TUM sample.
 #include "synth/depth_geometry.hpp"
+#include "synth/box_room.hpp"
 #include "synth/frame_statistics.hpp"
 #include "test_support.hpp"
 
@@ -28,25 +29,9 @@ synth::PinholeCamera small_camera() {
     return c;
 }
 
-// Depth (metres) of an axis-aligned box room [-2, 2] × [-1.2, 1.3] × [-3, 3] seen from `pose`
-// (camera-to-room), through the camera's distortion; `single_wall` keeps only the wall z = 3.
+// Depth (metres) of the test box room seen from `pose`; `single_wall` keeps only the wall z = 3.
 cv::Mat room_depth(const synth::DepthRays& rays, const Eigen::Isometry3d& pose, bool single_wall = false) {
-    const auto& c = rays.camera();
-    cv::Mat depth(c.height, c.width, CV_32F, cv::Scalar(0));
-    const double lo[3] = {-2.0, -1.2, -3.0}, hi[3] = {2.0, 1.3, 3.0};
-    for (int v = 0; v < c.height; ++v)
-        for (int u = 0; u < c.width; ++u) {
-            const Eigen::Vector3d d = pose.linear() * rays.point(u, v, 1.0), o = pose.translation();
-            double t = std::numeric_limits<double>::infinity();
-            for (int a = 0; a < 3; ++a)
-                for (double plane : {lo[a], hi[a]}) {
-                    if ((single_wall && !(a == 2 && plane == hi[2])) || std::abs(d[a]) < 1e-12) continue;
-                    const double s = (plane - o[a]) / d[a];
-                    if (s > 0) t = std::min(t, s);
-                }
-            if (std::isfinite(t)) depth.at<float>(v, u) = static_cast<float>(t);  // the ray has z = 1: t is the depth
-        }
-    return depth;
+    return test::box_room_view(rays, pose, single_wall).depth;
 }
 
 Eigen::Isometry3d camera_pose(int k) {

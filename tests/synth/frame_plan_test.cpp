@@ -55,6 +55,14 @@ TEST_CASE("synth stamps from a TUM folder: one frame per associated pair, depth 
     CHECK(plan[1].depth_stamp == Approx(1.112));
     CHECK(plan[1].color_pose.translation().x() == Approx(0.2));
     CHECK(plan[1].depth_pose.translation().x() == Approx(0.212));
+    // With stream latencies each image is taken that long before its stamp; the stamps stay as recorded.
+    const auto late = plan_from_tum_stamps(path, tmp.path(), skipped, StampLatency{0.008, 0.020});
+    REQUIRE(late.size() == 3);
+    CHECK(late[1].color_stamp == Approx(1.1));
+    CHECK(late[1].depth_stamp == Approx(1.112));
+    CHECK(late[1].color_pose.translation().x() == Approx(0.192));
+    CHECK(late[1].depth_pose.translation().x() == Approx(0.192));
+    CHECK(late[1].next_pose.translation().x() == Approx(0.202));  // the blur looks 10 ms past the exposure
     // No pair within the path: an error naming the list.
     const metrics::Trajectory elsewhere{pose_at(10.0, 0.0, 0.0), pose_at(11.0, 1.0, 0.0)};
     CHECK_THROWS_WITH(plan_from_tum_stamps(elsewhere, tmp.path(), skipped), Catch::Contains("rgb.txt") && Catch::Contains("time span"));
@@ -123,6 +131,8 @@ TEST_CASE("effects: all, none and ±name from the defaults, an unknown name list
     const Effects defaults = parse_effects("");
     CHECK(defaults.rolling_shutter);
     CHECK_FALSE(defaults.stamp_offsets);
+    CHECK(defaults.stamp_latency);  // only real stamps (--stamps) have a latency to model
+    CHECK_FALSE(parse_effects("-stamp_latency").stamp_latency);
     const Effects some = parse_effects("-motion_blur, +stamp_offsets");
     CHECK_FALSE(some.motion_blur);
     CHECK(some.stamp_offsets);

@@ -50,29 +50,6 @@ bool smooth_depth(const cv::Mat& depth_m, float u, float v, double& z) {
     return true;
 }
 
-// The median |relative residual| of frame i's depth moved by `j_from_i` onto frame j's; NaN when the
-// two overlap in fewer than kMinOverlap points.
-double pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays) {
-    std::vector<cv::Point3f> moved;
-    for (int v = 0; v < depth_i.rows; v += kStridePx)
-        for (int u = 0; u < depth_i.cols; u += kStridePx) {
-            const float z = depth_i.at<float>(v, u);
-            if (z <= 0) continue;
-            const Eigen::Vector3d q = j_from_i * rays.point(u, v, z);
-            if (q.z() > 0.05) moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
-        }
-    if (moved.size() < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
-    const auto pixels = rays.project(moved);
-    std::vector<double> residuals;
-    for (std::size_t k = 0; k < moved.size(); ++k) {
-        double measured = 0;
-        if (!smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) continue;
-        const double r = std::abs(measured - moved[k].z) / moved[k].z;
-        if (r < kOcclusion) residuals.push_back(r);
-    }
-    return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
-}
-
 }  // namespace
 
 cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale) {
@@ -95,6 +72,28 @@ DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     const Renderer::RayMap map = Renderer::make_ray_map(camera);
     rays_.reserve(map.dirs.size());
     for (const Eigen::Vector3d& d : map.dirs) rays_.push_back(d / d.z());
+}
+
+double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                           int stride_px) {
+    std::vector<cv::Point3f> moved;
+    for (int v = 0; v < depth_i.rows; v += stride_px)
+        for (int u = 0; u < depth_i.cols; u += stride_px) {
+            const float z = depth_i.at<float>(v, u);
+            if (z <= 0) continue;
+            const Eigen::Vector3d q = j_from_i * rays.point(u, v, z);
+            if (q.z() > 0.05) moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+        }
+    if (moved.size() < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
+    const auto pixels = rays.project(moved);
+    std::vector<double> residuals;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        double measured = 0;
+        if (!smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) continue;
+        const double r = std::abs(measured - moved[k].z) / moved[k].z;
+        if (r < kOcclusion) residuals.push_back(r);
+    }
+    return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
 }
 
 std::vector<cv::Point2f> DepthRays::project(const std::vector<cv::Point3f>& points) const {
@@ -131,7 +130,7 @@ std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& d
             const std::size_t j = i + static_cast<std::size_t>(gaps[g]);
             Eigen::Isometry3d pose_j;
             if (gaps[g] <= 0 || j >= n || !interpolate_pose(reference, depth_stamps[j], pose_j)) continue;
-            const double r = pair_residual(depth(i), depth(j), pose_j.inverse() * pose_i, rays);
+            const double r = depth_pair_residual(depth(i), depth(j), pose_j.inverse() * pose_i, rays, kStridePx);
             if (std::isfinite(r)) per_gap[g].push_back(r * 100.0);
         }
     }

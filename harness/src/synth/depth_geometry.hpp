@@ -56,6 +56,12 @@ cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale)
 // Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.
 void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera);
 
+// The median |relative residual| of frame i's depth (every `stride_px`-th pixel) moved by `j_from_i`
+// onto frame j's (bilinear on a smooth 2×2 neighbourhood, residuals over 5 % dropped as occlusions);
+// NaN when the two overlap in fewer than 500 points. Depths in metres, the camera's image size.
+double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                           int stride_px);
+
 struct ConsistencyAtGap {
     int gap = 0;            // frames between the two depth images of a pair
     double median_pct = 0;  // median over pairs of the pair's median |relative residual|, per cent (NaN: no pair)

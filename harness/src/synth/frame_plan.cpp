@@ -56,7 +56,8 @@ bool interpolate_pose(const metrics::Trajectory& poses, double t, Eigen::Isometr
     return true;
 }
 
-std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera, const std::filesystem::path& dir, std::size_t& skipped) {
+std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera, const std::filesystem::path& dir, std::size_t& skipped,
+                                               const StampLatency& latency) {
     const auto rgb = tum::parse_list(read_file(dir / "rgb.txt"), (dir / "rgb.txt").string());
     const auto depth = tum::parse_list(read_file(dir / "depth.txt"), (dir / "depth.txt").string());
     std::vector<double> rgb_stamps, depth_stamps;
@@ -71,14 +72,15 @@ std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera
         PlannedFrame f;
         f.color_stamp = rgb_stamps[m.first];
         f.depth_stamp = depth_stamps[m.second];
-        if (!interpolate_pose(camera, f.color_stamp, f.color_pose) || !interpolate_pose(camera, f.depth_stamp, f.depth_pose)) {
+        const double color_exposed = f.color_stamp - latency.color_s, depth_exposed = f.depth_stamp - latency.depth_s;
+        if (!interpolate_pose(camera, color_exposed, f.color_pose) || !interpolate_pose(camera, depth_exposed, f.depth_pose)) {
             ++skipped;
             continue;
         }
         f.blur_interval_s = kBlurLookAhead;
-        if (!interpolate_pose(camera, f.color_stamp + kBlurLookAhead, f.next_pose)) {
+        if (!interpolate_pose(camera, color_exposed + kBlurLookAhead, f.next_pose)) {
             f.blur_interval_s = -kBlurLookAhead;  // at the end: look back, the caller's blur is symmetric
-            if (!interpolate_pose(camera, f.color_stamp - kBlurLookAhead, f.next_pose)) f.next_pose = f.color_pose;
+            if (!interpolate_pose(camera, color_exposed - kBlurLookAhead, f.next_pose)) f.next_pose = f.color_pose;
         }
         plan.push_back(f);
     }

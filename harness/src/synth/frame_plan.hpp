@@ -4,7 +4,9 @@
 // stamps of a real TUM folder (`vobench synth --stamps DIR`), each associated colour–depth pair of
 // DIR's rgb.txt and depth.txt is one frame: the colour image is rendered at the pose interpolated at
 // its own stamp and the depth image at the pose at *its* stamp, so the real recording's
-// unsynchronised streams (offsets of up to ~16 ms in fr1) and its dropped frames are reproduced.
+// unsynchronised streams (offsets of up to ~16 ms in fr1) and its dropped frames are reproduced. A
+// recorded stamp is not the exposure, though: each image can be taken its stream's latency before its
+// stamp (effect `stamp_latency`, measured with `vobench synth stats --camera`; stamp_latency.hpp).
 #pragma once
 
 #include "metrics/pose.hpp"
@@ -27,12 +29,19 @@ struct PlannedFrame {
 // One frame per pose (colour and depth at the same stamp); the blur looks at the next pose.
 std::vector<PlannedFrame> plan_every_pose(const metrics::Trajectory& camera);
 
+// How long before its recorded stamp each stream's image is exposed (seconds; the middle row's time).
+struct StampLatency {
+    double color_s = 0;
+    double depth_s = 0;
+};
+
 // One frame per colour–depth pair of `tum_folder` (TUM's association, pairs closer than 20 ms), poses
-// interpolated in `camera` (position linearly, rotation by slerp). Pairs outside the trajectory's time
-// span are left out and counted in `skipped`. Throws std::runtime_error naming the file when the
-// lists cannot be read or no pair lies inside the trajectory.
+// interpolated in `camera` (position linearly, rotation by slerp) at each image's stamp minus its
+// stream's `latency`; the frame keeps the recorded stamps. Pairs outside the trajectory's time span
+// are left out and counted in `skipped`. Throws std::runtime_error naming the file when the lists
+// cannot be read or no pair lies inside the trajectory.
 std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera, const std::filesystem::path& tum_folder,
-                                               std::size_t& skipped);
+                                               std::size_t& skipped, const StampLatency& latency = {});
 
 // Effect `stamp_offsets` for built-in trajectories: each depth image is taken up to ±16 ms off its
 // colour image (uniform, from the seed), as the unsynchronised Kinect v1 streams of TUM's fr1 show

@@ -3,6 +3,7 @@
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/stamp_latency.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
 
@@ -227,6 +228,32 @@ void score_edge_shifts(const cv::Mat& depth_m, const cv::Mat& grey, ShiftScores&
         }
 }
 
+// The streams' stamp latencies (stamp_latency.hpp) over the first kLatencyFrames associated pairs.
+void measure_latency(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, const std::vector<tum::ListEntry>& depth,
+                     const std::vector<metrics::Match>& pairs, const metrics::Trajectory& reference, const DepthRays& rays,
+                     double depth_scale, Accumulator& acc) {
+    constexpr std::size_t kLatencyFrames = 120;
+    LatencyFrames color, depth_stream;
+    for (std::size_t k = 0; k < std::min(kLatencyFrames, pairs.size()); ++k) {
+        const auto color_path = folder / rgb[pairs[k].first].path, depth_path = folder / depth[pairs[k].second].path;
+        const cv::Mat grey = cv::imread(color_path.string(), cv::IMREAD_GRAYSCALE);
+        if (grey.empty()) throw std::runtime_error(color_path.string() + ": cannot be decoded as an image");
+        const cv::Mat depth_m = read_depth_metres(depth_path, depth_scale);
+        require_camera_size(depth_path, depth_m, rays.camera());
+        require_camera_size(color_path, grey, rays.camera());
+        color.stamps.push_back(rgb[pairs[k].first].stamp);
+        color.grey.push_back(grey);
+        color.depth_m.push_back(depth_m);
+        depth_stream.stamps.push_back(depth[pairs[k].second].stamp);
+        depth_stream.depth_m.push_back(depth_m);
+    }
+    const LatencyEstimate c = color_latency(color, reference, rays), d = depth_latency(depth_stream, reference, rays);
+    if (c.pairs > 0)
+        acc.mean("stamps.color_latency_ms", "colour exposed before its stamp, ms (best agreement with the reference)", c.latency_ms);
+    if (d.pairs > 0)
+        acc.mean("stamps.depth_latency_ms", "depth exposed before its stamp, ms (best agreement with the reference)", d.latency_ms);
+}
+
 }  // namespace
 
 FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale,
@@ -287,6 +314,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         std::vector<std::filesystem::path> depth_paths;
         for (const auto& e : depth) depth_paths.push_back(folder / e.path);
         const auto reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
+        measure_latency(folder, rgb, depth, pairs, reference, *rays, depth_scale, acc);
         for (const auto& g : reference_consistency(depth_stamps, depth_paths, reference, *rays, {1, 4, 16}, max_frames, depth_scale))
             if (g.pairs > 0)
                 acc.mean(fmt::format("reference.depth_residual_pct.gap_{}", g.gap),

@@ -48,6 +48,7 @@ struct Effects {
     bool flying_pixels = true;            // Kinect v2: mixed depths at discontinuities
     bool registration_error = true;       // Kinect v1: depth registered a little off the colour image
     bool stamp_offsets = false;           // built-in trajectories: depth stamps off the colour stamps
+    bool stamp_latency = true;            // --stamps: each image exposed its stream's latency before its recorded stamp
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
@@ -106,6 +107,9 @@ struct SensorModel {
     double tone_contrast = 1.0;
     double gain = 1.0;
     double color_readout_s = 0.0, depth_readout_s = 0.0;  // rolling shutter: first to last row
+    // Effect stamp_latency (with real stamps, `--stamps`): how long before its recorded stamp each
+    // stream's image is exposed (its middle row). Recorded stamps are when the driver received an image.
+    double color_latency_s = 0.0, depth_latency_s = 0.0;
     Effects effects;
 };
 

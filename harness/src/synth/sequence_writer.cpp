@@ -215,7 +215,10 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         throw std::invalid_argument("--stamps needs --layout tum and a trajectory file of camera poses (--trajectory-format tum)");
     std::size_t skipped = 0;
     std::vector<PlannedFrame> plan =
-        o.stamps.empty() ? plan_every_pose(paths.camera) : plan_from_tum_stamps(paths.camera, o.stamps, skipped);
+        o.stamps.empty() ? plan_every_pose(paths.camera)
+                         : plan_from_tum_stamps(paths.camera, o.stamps, skipped,
+                                                sensor.effects.stamp_latency ? StampLatency{sensor.color_latency_s, sensor.depth_latency_s}
+                                                                             : StampLatency{});
     if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, paths.camera, o.seed);
     const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, plan.size()) : plan.size();
     plan.resize(count);

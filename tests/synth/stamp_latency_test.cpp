@@ -1,0 +1,123 @@
+// The stamp-latency statistic of `vobench synth stats --camera` (stamp_latency.hpp): images of the
+// test box room taken a known time before their stamps, while the camera swings as fast as in TUM's
+// fr1/rpy, must give that time back; and the real TUM sample's streams lag their stamps.
+#include "synth/stamp_latency.hpp"
+#include "synth/box_room.hpp"
+#include "synth/frame_statistics.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace vobench;
+
+namespace {
+
+synth::PinholeCamera small_camera() {
+    synth::PinholeCamera c;
+    c.width = 320;
+    c.height = 240;
+    c.fx = c.fy = 260.0;
+    c.cx = 159.5;
+    c.cy = 119.5;
+    c.distortion_count = 5;
+    c.distortion = {0.12, -0.2, 0.001, -0.002, 0.05, 0, 0, 0};
+    return c;
+}
+
+// A camera swinging in yaw and pitch at up to ≈ 1 rad/s (fr1/rpy's fast part: 2–4° a frame) and
+// drifting slowly, at time t.
+Eigen::Isometry3d swinging(double t) {
+    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+    p.linear() = (Eigen::AngleAxisd(0.16 * std::sin(2 * M_PI * 0.9 * t), Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(0.10 * std::sin(2 * M_PI * 1.3 * t + 0.5), Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    p.translation() = Eigen::Vector3d(0.05 * t, 0.02 * std::sin(3 * t), 0.03 * t);
+    return p;
+}
+
+// The reference: the camera's poses at 100 Hz, as a motion-capture system records them.
+metrics::Trajectory reference(double from, double to) {
+    metrics::Trajectory out;
+    for (double t = from; t <= to; t += 0.01) {
+        metrics::StampedPose p;
+        p.t = t;
+        p.p = swinging(t).translation();
+        p.q = Eigen::Quaterniond(swinging(t).linear());
+        out.push_back(p);
+    }
+    return out;
+}
+
+// Frames stamped 30 Hz apart whose colour was taken `color_ms` and depth `depth_ms` before the stamp.
+void frames(const synth::DepthRays& rays, double color_ms, double depth_ms, synth::LatencyFrames& color, synth::LatencyFrames& depth) {
+    for (int k = 0; k < 36; ++k) {
+        const double stamp = 1.0 + k / 30.0;
+        const auto seen_in_colour = test::box_room_view(rays, swinging(stamp - color_ms * 1e-3));
+        const cv::Mat depth_image = test::box_room_view(rays, swinging(stamp - depth_ms * 1e-3)).depth;
+        color.stamps.push_back(stamp);
+        color.grey.push_back(seen_in_colour.grey);
+        color.depth_m.push_back(depth_image);  // registered depth, taken at its own time as a real sensor's is
+        depth.stamps.push_back(stamp);
+        depth.depth_m.push_back(depth_image);
+    }
+}
+
+}  // namespace
+
+TEST_CASE("stamp latency: images taken before their stamps give that time back, stamps that are exposures give 0",
+          "[synth][stats][stamp_latency]") {
+    const synth::DepthRays rays(small_camera());
+    const auto poses = reference(0.5, 2.8);
+    for (const auto& [color_ms, depth_ms] : {std::pair{8.0, 20.0}, std::pair{0.0, 0.0}, std::pair{16.0, 4.0}}) {
+        synth::LatencyFrames color, depth;
+        frames(rays, color_ms, depth_ms, color, depth);
+        const auto c = synth::color_latency(color, poses, rays), d = synth::depth_latency(depth, poses, rays);
+        INFO("colour " << color_ms << " ms → " << c.latency_ms << " ms (" << c.pairs << " pairs, cost " << c.cost_at_zero << " → "
+                       << c.cost_at_best << "); depth " << depth_ms << " ms → " << d.latency_ms << " ms (" << d.pairs << " pairs)");
+        CHECK(std::abs(c.latency_ms - color_ms) <= 2.0);  // the scan's step is 2 ms
+        CHECK(std::abs(d.latency_ms - depth_ms) <= 2.0);
+        CHECK(c.pairs >= 3 * 30);
+        CHECK(d.pairs >= 3 * 30);
+        CHECK(c.cost_at_best <= c.cost_at_zero);
+    }
+}
+
+TEST_CASE("stamp latency: a reference that does not cover the stamps gives no estimate", "[synth][stats][stamp_latency]") {
+    const synth::DepthRays rays(small_camera());
+    synth::LatencyFrames color, depth;
+    frames(rays, 8.0, 20.0, color, depth);
+    const auto elsewhere = reference(10.0, 12.0);
+    const auto d = synth::depth_latency(depth, elsewhere, rays);
+    CHECK(d.pairs == 0);
+    CHECK(std::isnan(d.latency_ms));
+    CHECK(synth::color_latency(color, elsewhere, rays).pairs == 0);
+}
+
+TEST_CASE("stamp latency on the real TUM sample: depth lags its stamps by about 20 ms, colour by less",
+          "[synth][stats][stamp_latency][reference]") {
+    VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
+    synth::PinholeCamera fr1;  // TUM's published fr1 colour camera
+    fr1.width = 640;
+    fr1.height = 480;
+    fr1.fx = 517.3;
+    fr1.fy = 516.5;
+    fr1.cx = 318.6;
+    fr1.cy = 255.3;
+    fr1.distortion_count = 5;
+    fr1.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633, 0, 0, 0};
+    double color = NAN, depth = NAN;
+    for (const auto& v : synth::measure_folder(dir, 2, 5000.0, &fr1).values) {
+        if (v.key == "stamps.color_latency_ms") color = v.value;
+        if (v.key == "stamps.depth_latency_ms") depth = v.value;
+    }
+    INFO("colour " << color << " ms, depth " << depth << " ms");
+    // Measured on the 90 frames: colour 6 ms, depth 18 ms (fr1/desk's 9 frames: 10 and 22 ms); the
+    // Kinect v1 model renders with their means (sensor_model.cpp).
+    CHECK(color >= 0);
+    CHECK(color <= 12);
+    CHECK(depth >= 12);
+    CHECK(depth <= 28);
+    CHECK(depth > color + 6);
+}
