@@ -9,7 +9,8 @@ every ratio (translation and rotation, both Δ) inside [lo, hi], and the same or
 by rotational RPE (Δ = 1 s) on both. Exit 0 when they hold, 1 when not, 2 on unusable input.
 
 Why several renderings: on a 3-second sequence one office decides a lot — the same poses rendered in
-offices of seeds 1-5 moved single ratios by 2-4x (docs/synthetic-sensors.md). The rendered figure is
+offices of seeds 1-5 moved single ratios by 2-4x, and the medians over seeds 1-5 and over 6-10 still
+differed by up to 40 % (docs/synthetic-sensors.md); the check renders ten. The rendered figure is
 the median over the renderings, and the range of the per-rendering ratios is printed beside it.
 
 Usage: sim_to_real_compare.py VOBENCH SWEEP_DIR [--lo 0.67] [--hi 1.5] [--report-only]
