@@ -3,6 +3,7 @@
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
 #include <fstream>
 #include <sstream>
@@ -85,4 +86,45 @@ TEST_CASE("synth refuses bad options with a clear message", "[synth]") {
     o.trajectory = "explore1";
     o.sensor = "kinect3";
     CHECK_THROWS_WITH(synth::synthesize(o), Catch::Matchers::Contains("unknown sensor 'kinect3'"));
+}
+
+TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, recorded in synth.json; -stamp_latency at the stamps",
+          "[synth][stamps]") {
+    test::TempDir tmp;
+    // A camera 1.5 m above a z-up motion-capture floor, looking level and turning at 1 rad/s about the
+    // vertical (TUM's convention), and two frames whose lists carry equal colour and depth stamps.
+    {
+        std::ofstream gt(tmp.path() / "camera.txt");
+        gt.precision(17);
+        Eigen::Matrix3d level;  // columns: the camera's x (right), y (down), z (forward) in the world
+        level << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+        for (int k = 0; k <= 200; ++k) {
+            const double t = 100.0 + k * 0.01;
+            const Eigen::Quaterniond q(Eigen::AngleAxisd(t - 100.0, Eigen::Vector3d::UnitZ()).toRotationMatrix() * level);
+            gt << t << " 0 0 1.5 " << q.x() << " " << q.y() << " " << q.z() << " " << q.w() << "\n";
+        }
+    }
+    fs::create_directories(tmp.path() / "lists");
+    std::ofstream(tmp.path() / "lists" / "rgb.txt") << "100.5 rgb/a.png\n100.6 rgb/b.png\n";
+    std::ofstream(tmp.path() / "lists" / "depth.txt") << "100.5 depth/a.png\n100.6 depth/b.png\n";
+    const auto render = [&](const std::string& effects, const std::string& name) {
+        synth::SynthOptions o;
+        o.sensor = "kinect1";
+        o.camera = "tum-fr1";
+        o.trajectory = (tmp.path() / "camera.txt").string();
+        o.trajectory_format = "tum";
+        o.stamps = tmp.path() / "lists";
+        o.effects = effects;
+        o.out = tmp.path() / name;
+        REQUIRE(synth::synthesize(o).frames == 2);
+        return nlohmann::json::parse(slurp(o.out / "synth.json"));
+    };
+    const auto with = render("", "with"), without = render("-stamp_latency", "without");
+    CHECK(with["effects"]["stamp_latency"] == true);
+    CHECK(with["stamp_latency_s"]["color"].get<double>() == Approx(0.008));
+    CHECK(with["stamp_latency_s"]["depth"].get<double>() == Approx(0.020));
+    CHECK(without["stamp_latency_s"]["depth"].get<double>() == 0.0);
+    // The lists keep the recorded stamps; the images differ (20 ms at 1 rad/s: 1.1°, ≈ 10 px).
+    CHECK(slurp(tmp.path() / "with" / "depth.txt") == slurp(tmp.path() / "without" / "depth.txt"));
+    CHECK(slurp(tmp.path() / "with" / "depth" / "100.500000.png") != slurp(tmp.path() / "without" / "depth" / "100.500000.png"));
 }

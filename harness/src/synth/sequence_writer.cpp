@@ -214,11 +214,11 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     if (!o.stamps.empty() && (o.layout != "tum" || !paths.marker.empty()))
         throw std::invalid_argument("--stamps needs --layout tum and a trajectory file of camera poses (--trajectory-format tum)");
     std::size_t skipped = 0;
+    // Only recorded stamps lag their exposures; a built-in trajectory's stamps are the exposures.
+    const StampLatency latency =
+        !o.stamps.empty() && sensor.effects.stamp_latency ? StampLatency{sensor.color_latency_s, sensor.depth_latency_s} : StampLatency{};
     std::vector<PlannedFrame> plan =
-        o.stamps.empty() ? plan_every_pose(paths.camera)
-                         : plan_from_tum_stamps(paths.camera, o.stamps, skipped,
-                                                sensor.effects.stamp_latency ? StampLatency{sensor.color_latency_s, sensor.depth_latency_s}
-                                                                             : StampLatency{});
+        o.stamps.empty() ? plan_every_pose(paths.camera) : plan_from_tum_stamps(paths.camera, o.stamps, skipped, latency);
     if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, paths.camera, o.seed);
     const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, plan.size()) : plan.size();
     plan.resize(count);
@@ -351,6 +351,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"frame_rate_hz", kFrameRateHz},
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
+                              {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
                               {"room_boxes", scene.boxes.size()}};
     write_json_atomic(o.out / "synth.json", meta);
     return {count, skipped, seconds};
