@@ -30,7 +30,8 @@ CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
     c->add_option("--max-frames", max_frames, "At most N colour-depth pairs per folder, evenly spaced (0: all)");
     c->add_option("--camera", camera,
                   "The colour camera the depth is registered to (a name, e.g. tum-fr1, or a camera file as for synth --camera): adds "
-                  "the ICP conditioning and, with groundtruth.txt, the depth residual under the reference's motion");
+                  "the ICP conditioning and, with groundtruth.txt, the depth residual under the reference's motion and each stream's stamp "
+                  "latency");
     c->add_flag("--json", json, "Print one JSON object");
     c->callback([&exit_code] {
         std::optional<synth::CameraSpec> spec;
@@ -92,8 +93,8 @@ void add_synth_command(CLI::App& app, int& exit_code) {
         "k3 k4 k5 k6]` (default: the sensor's own)");
     static std::string stamps;
     c->add_option("--stamps", stamps,
-                  "A TUM folder: render one frame per colour-depth pair of its rgb.txt/depth.txt, each image at its own stamp (needs "
-                  "--trajectory-format tum)");
+                  "A TUM folder: render one frame per colour-depth pair of its rgb.txt/depth.txt, each image at its own stamp less "
+                  "its stream's latency (effect stamp_latency; needs --trajectory-format tum)");
     c->add_option("--frames", o.frames, "Render only the first N poses (0: all)");
     c->add_option("--seed", o.seed, "Seed of the scene and of all noise")->capture_default_str();
     c->add_option("--layout", o.layout, "Output layout: tum, putk2, putk2-tum, icl-tum, icl-povray")
