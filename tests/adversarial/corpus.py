@@ -47,6 +47,18 @@ def run(cmd, timeout=600, env=None, **kw):
     return subprocess.run(cmd, capture_output=True, text=True, errors="replace", timeout=timeout, env=e, **kw)
 
 
+def png_of(chunks):
+    """A PNG file of (type, body) chunks, each with its length and CRC."""
+    return b"\x89PNG\r\n\x1a\n" + b"".join(
+        struct.pack(">I", len(body)) + t + body + struct.pack(">I", zlib.crc32(t + body)) for t, body in chunks)
+
+
+def grey_png(width, height, level=128):
+    """An 8-bit single-channel PNG of one grey level."""
+    raw = b"".join(b"\x00" + bytes([level]) * width for _ in range(height))
+    return png_of([(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)), (b"IDAT", zlib.compress(raw)), (b"IEND", b"")])
+
+
 def write(path, text):
     os.makedirs(os.path.dirname(path), exist_ok=True)
     with open(path, "w") as f:
@@ -322,6 +334,16 @@ def synth_inputs(args, w):
     stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
     check("synth stats --camera: a healthy 10-frame folder gets the stamp latencies", "stamps.depth_latency_ms" in stats and
           "stamps.color_latency_ms" in stats, r.stderr[-500:] + str(sorted(stats)))
+    # The latency pass reads frames the other statistics skipped (--max-frames): a colour image there of
+    # another size than its depth is refused too, naming the depth image.
+    b = os.path.join(d, "stats_ten_small_colour")
+    shutil.copytree(ten, b)
+    pairs = [l.split() for l in open(os.path.join(b, "rgb.txt")) if not l.startswith("#")]
+    depths = [l.split() for l in open(os.path.join(b, "depth.txt")) if not l.startswith("#")]
+    open(os.path.join(b, pairs[5][1]), "wb").write(grey_png(320, 240))
+    refused("stats --camera --max-frames 1 with a later colour image of another size",
+            ["synth", "stats", b, "--camera", "putk2-kinect1", "--max-frames", "1"],
+            re.escape(os.path.join(b, depths[5][1])) + r": depth is 640×480, colour 320×240 \(not registered\)")
     b = os.path.join(d, "stats_gt_elsewhere")
     shutil.copytree(ten, b)
     write(os.path.join(b, "groundtruth.txt"), "5000.0 0 0 0 0 0 0 1\n5000.1 0 0 0 0 0 0 1\n")
@@ -484,10 +506,6 @@ def data_faults(args, w):
             out.append((b[at + 4:at + 8], b[at + 8:at + 8 + n]))
             at += 12 + n
         return out
-
-    def png_of(chunks):
-        return b"\x89PNG\r\n\x1a\n" + b"".join(
-            struct.pack(">I", len(body)) + t + body + struct.pack(">I", zlib.crc32(t + body)) for t, body in chunks)
 
     def frame_file(d, listing, k):
         return os.path.join(d, lines(d, listing)[3 + k].split()[1])

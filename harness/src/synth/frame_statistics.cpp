@@ -228,6 +228,13 @@ void score_edge_shifts(const cv::Mat& depth_m, const cv::Mat& grey, ShiftScores&
         }
 }
 
+// Throws naming `depth_path` when the depth image is not the colour image's size (not registered to it).
+void require_registered(const std::filesystem::path& depth_path, const cv::Mat& depth_m, const cv::Mat& color) {
+    if (depth_m.size() != color.size())
+        throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth_m.cols) + "×" + std::to_string(depth_m.rows) +
+                                 ", colour " + std::to_string(color.cols) + "×" + std::to_string(color.rows) + " (not registered)");
+}
+
 // The streams' stamp latencies (stamp_latency.hpp) over the first kLatencyFrames associated pairs.
 void measure_latency(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, const std::vector<tum::ListEntry>& depth,
                      const std::vector<metrics::Match>& pairs, const metrics::Trajectory& reference, const DepthRays& rays,
@@ -239,8 +246,8 @@ void measure_latency(const std::filesystem::path& folder, const std::vector<tum:
         const cv::Mat grey = cv::imread(color_path.string(), cv::IMREAD_GRAYSCALE);
         if (grey.empty()) throw std::runtime_error(color_path.string() + ": cannot be decoded as an image");
         const cv::Mat depth_m = read_depth_metres(depth_path, depth_scale);
+        require_registered(depth_path, depth_m, grey);
         require_camera_size(depth_path, depth_m, rays.camera());
-        require_camera_size(color_path, grey, rays.camera());
         color.stamps.push_back(rgb[pairs[k].first].stamp);
         color.grey.push_back(grey);
         color.depth_m.push_back(depth_m);
@@ -277,10 +284,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         const cv::Mat bgr = cv::imread(color_path.string(), cv::IMREAD_COLOR);
         if (bgr.empty()) throw std::runtime_error(color_path.string() + ": cannot be decoded as an image");
         const cv::Mat depth_m = read_depth_metres(depth_path, depth_scale);
-        if (depth_m.size() != bgr.size())
-            throw std::runtime_error(depth_path.string() + ": depth is " + std::to_string(depth_m.cols) + "×" +
-                                     std::to_string(depth_m.rows) + ", colour " + std::to_string(bgr.cols) + "×" +
-                                     std::to_string(bgr.rows) + " (not registered)");
+        require_registered(depth_path, depth_m, bgr);
         cv::Mat grey;
         cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
         measure_depth(depth_m, grey, acc);
