@@ -262,6 +262,8 @@ def synth_inputs(args, w):
             r"unknown effect 'motion_blurr'")
     refused("a misspelt correlated_depth_noise", ["synth", "--effects", "+correlated_depth_nois", "--frames", "2", "--out",
                                                  os.path.join(d, "out")], r"unknown effect 'correlated_depth_nois'.*correlated_depth_noise")
+    refused("a misspelt depth_distortion", ["synth", "--effects", "-depth_distorsion", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"unknown effect 'depth_distorsion'.*depth_distortion")
     refused("a misspelt stamp_latency", ["synth", "--effects", "-stamp_latncy", "--frames", "2", "--out", os.path.join(d, "out")],
             r"unknown effect 'stamp_latncy'.*stamp_latency")
     # --stamps: no lists; unsorted list; stamps all outside the trajectory; with a built-in path.

@@ -1,4 +1,5 @@
 // The sensor models, checked statistically on rendered flat walls and step edges at known distances.
+#include "synth/camera_catalog.hpp"
 #include "synth/renderer.hpp"
 #include "synth/smooth_field.hpp"
 
@@ -253,4 +254,32 @@ TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, of
         }
     CHECK(neighbour_smooth / n < 1.3 * neighbour_plain / n);
     CHECK(b.std > 1.3 * a.std);
+}
+
+TEST_CASE("depth_distortion adds the camera's measured disparity offset field; none for a camera without one", "[synth][sensor]") {
+    const double z = 3.0;  // the offset's depth error grows as z²: at 3 m it is centimetres
+    TestRig rig(z);
+    const auto depth = [&](const char* camera, const char* effects, SensorModel& sensor) {
+        sensor = with_color_camera(kinect1(), camera_by_name_or_file(camera));
+        sensor.effects = parse_effects(effects);
+        return Renderer(rig.scene, sensor, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+    };
+    SensorModel fr1;
+    const cv::Mat exact = depth("tum-fr1", "none", fr1), distorted = depth("tum-fr1", "none,+depth_distortion", fr1);
+    const auto& a = fr1.disparity_distortion_px;
+    REQUIRE((a[0] != 0 || a[1] != 0 || a[2] != 0));
+    const double fb = fr1.ir_focal_px * fr1.baseline_m;
+    for (const auto& [u, v] : {std::pair{320, 255}, std::pair{600, 240}, std::pair{40, 60}, std::pair{300, 460}}) {
+        const double x = (u - fr1.depth.cx) / fr1.depth.fx, y = (v - fr1.depth.cy) / fr1.depth.fy;
+        const double offset = a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
+        INFO("pixel (" << u << ", " << v << "): offset " << offset << " px");
+        CHECK(exact.at<float>(v, u) == Approx(z).margin(1e-5));
+        CHECK(distorted.at<float>(v, u) == Approx(fb / (fb / z + offset)).margin(1e-5));
+    }
+    // Fixed to the camera: the same field in every frame, whatever the seed.
+    CHECK(cv::norm(distorted, Renderer(rig.scene, fr1, 99).render(5, rig.pose, rig.pose, 0.1, false).depth_native, cv::NORM_INF) == 0);
+    // PUT's Kinect v1 has no measured field: the effect changes nothing.
+    SensorModel put;
+    CHECK(cv::norm(depth("putk2-kinect1", "none", put), depth("putk2-kinect1", "none,+depth_distortion", put), cv::NORM_INF) == 0);
+    CHECK(parse_effects("").depth_distortion);
 }

@@ -63,7 +63,13 @@ std::vector<std::string> camera_names() { return {"putk2-kinect1", "putk2-kinect
 CameraSpec camera_by_name_or_file(const std::string& name) {
     if (name == "putk2-kinect1") return {kinect1().color, 2};
     if (name == "putk2-kinect2") return {kinect2().color, 1};
-    if (name == "tum-fr1") return tum_camera(tum::kFr1);
+    if (name == "tum-fr1") {
+        // TUM fr1's Kinect: its depth's disparity offset field, measured from the real fr1/rpy frames
+        // and their reference alone (scripts/fit_depth_distortion.py; docs/synthetic-sensors.md).
+        CameraSpec fr1 = tum_camera(tum::kFr1);
+        fr1.disparity_distortion_px = {-0.833, 0.877, -0.450};
+        return fr1;
+    }
     if (name == "tum-fr2") return tum_camera(tum::kFr2);
     if (name == "tum-fr3") return tum_camera(tum::kFr3);
     if (!std::filesystem::is_regular_file(name)) {
@@ -79,6 +85,7 @@ SensorModel with_color_camera(SensorModel s, const CameraSpec& camera) {
     if (s.principle == DepthPrinciple::StructuredLight) {
         const double k = camera.depth_divisor;
         const PinholeCamera& c = camera.color;
+        s.disparity_distortion_px = camera.disparity_distortion_px;
         s.depth = {c.width / camera.depth_divisor,
                    c.height / camera.depth_divisor,
                    c.fx / k,

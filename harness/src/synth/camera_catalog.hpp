@@ -11,6 +11,7 @@
 
 #include "synth/sensor_model.hpp"
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ struct CameraSpec {
     // Kinect v1 only: the registered depth grid is the colour image divided by this (PUTK² recorded
     // 320×240 depth beside 640×480 colour; TUM recorded depth at the full 640×480).
     int depth_divisor = 1;
+    // Kinect v1 only: the depth camera's measured disparity distortion (SensorModel::disparity_distortion_px;
+    // zero where none was measured).
+    std::array<double, 3> disparity_distortion_px{};
 };
 
 std::vector<std::string> camera_names();

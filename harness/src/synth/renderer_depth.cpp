@@ -82,6 +82,13 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     std::optional<SmoothField> correlated;
     if (correlated_sigma > 0)
         correlated.emplace(W, H, std::max(1.0, sensor_.disparity_correlation_px * px), hash(seed_, kCorrelatedDisparity, frame));
+    // The unit's fixed disparity offset field (zero unless the camera brings a measured one).
+    const auto& a = sensor_.disparity_distortion_px;
+    const bool distortion = fx.depth_distortion && (a[0] != 0 || a[1] != 0 || a[2] != 0);
+    const auto disparity_offset = [&](int u, int v) {
+        const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
+        return a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
+    };
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
@@ -99,15 +106,19 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             const Hit& hit = ray.hit;
             // The projector's shadow: a point the pattern cannot reach has no disparity.
             if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) continue;
-            if (!fx.depth_noise) {
+            const double offset = distortion ? disparity_offset(u, v) : 0.0;
+            if (!fx.depth_noise && offset == 0) {
                 out.depth_native.at<float>(v, u) = static_cast<float>(z);
                 continue;
             }
-            double d = fb / z + sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
-            if (correlated) d += correlated_sigma * correlated->at(u, v);
-            const double dq = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
-            if (dq <= 0) continue;
-            out.depth_native.at<float>(v, u) = static_cast<float>(fb / dq);
+            double d = fb / z + offset;
+            if (fx.depth_noise) {
+                d += sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
+                if (correlated) d += correlated_sigma * correlated->at(u, v);
+                d = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
+            }
+            if (d <= 0) continue;
+            out.depth_native.at<float>(v, u) = static_cast<float>(fb / d);
         }
     });
     if (fx.edge_dropout) {

@@ -122,7 +122,8 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"registration_error", &Effects::registration_error},
                                                                             {"flying_pixels", &Effects::flying_pixels},
                                                                             {"stamp_offsets", &Effects::stamp_offsets},
-                                                                            {"stamp_latency", &Effects::stamp_latency}};
+                                                                            {"stamp_latency", &Effects::stamp_latency},
+                                                                            {"depth_distortion", &Effects::depth_distortion}};
     return table;
 }
 

@@ -49,6 +49,7 @@ struct Effects {
     bool registration_error = true;       // Kinect v1: depth registered a little off the colour image
     bool stamp_offsets = false;           // built-in trajectories: depth stamps off the colour stamps
     bool stamp_latency = true;            // --stamps: each image exposed its stream's latency before its recorded stamp
+    bool depth_distortion = true;         // Kinect v1: the camera's measured disparity offset field (none: nothing to add)
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
@@ -76,6 +77,12 @@ struct SensorModel {
     // neighbouring pixels, so they do not average out over a surface (docs/synthetic-sensors.md).
     double disparity_correlated_sigma_px = 0.0;
     double disparity_correlation_px = 16.0;
+    // Effect depth_distortion: a fixed disparity offset δ = a·r² + b·x + c·y (pixels of the 640-wide IR
+    // image; x, y the depth grid's normalised pinhole coordinates, r² = x² + y²) added to every
+    // measurement — the unit's own calibration error, whose depth error grows as z²·δ/(f·b)
+    // (Herrera et al. 2012 model such a pattern; Teichman et al. 2013 show it differs from unit to
+    // unit). Zero unless the camera (`--camera`) brings a measured one.
+    std::array<double, 3> disparity_distortion_px{};
     Eigen::Vector3d projector_in_color{-0.05, 0.0, 0.0};
     // Time of flight (Fankhauser et al. 2015, axial noise fit, mm):
     //   σ_z(z, θ) = 1.5 − 0.5·z + 0.3·z² + 0.1·z^1.5·θ²/(π/2 − θ)²
