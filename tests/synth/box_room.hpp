@@ -13,6 +13,19 @@
 
 namespace vobench::test {
 
+// A small camera (320×240) with a lens like TUM's, so that the ray model's distortion matters.
+inline synth::PinholeCamera small_distorted_camera() {
+    synth::PinholeCamera c;
+    c.width = 320;
+    c.height = 240;
+    c.fx = c.fy = 260.0;
+    c.cx = 159.5;
+    c.cy = 119.5;
+    c.distortion_count = 5;
+    c.distortion = {0.12, -0.2, 0.001, -0.002, 0.05, 0, 0, 0};
+    return c;
+}
+
 struct BoxRoomView {
     cv::Mat depth;  // metres along the optical axis, CV_32F
     cv::Mat grey;   // CV_8U: the walls' texture, a few sinusoids of the hit point (ample gradient)

@@ -17,18 +17,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-synth::PinholeCamera small_camera() {
-    synth::PinholeCamera c;
-    c.width = 320;
-    c.height = 240;
-    c.fx = c.fy = 260.0;
-    c.cx = 159.5;
-    c.cy = 119.5;
-    c.distortion_count = 5;
-    c.distortion = {0.12, -0.2, 0.001, -0.002, 0.05, 0, 0, 0};  // a lens like TUM's, so the ray model matters
-    return c;
-}
-
 // Depth (metres) of the test box room seen from `pose`; `single_wall` keeps only the wall z = 3.
 cv::Mat room_depth(const synth::DepthRays& rays, const Eigen::Isometry3d& pose, bool single_wall = false) {
     return test::box_room_view(rays, pose, single_wall).depth;
@@ -74,7 +62,7 @@ Sequence write_room_sequence(const fs::path& dir, const synth::DepthRays& rays, 
 TEST_CASE("reference consistency: exact poses stay at the depth quantisation, a hand-eye error grows with the gap",
           "[synth][stats][depth_geometry]") {
     test::TempDir tmp;
-    const synth::DepthRays rays(small_camera());
+    const synth::DepthRays rays(test::small_distorted_camera());
     const Sequence s = write_room_sequence(tmp.path(), rays, 24);
 
     const auto exact = synth::reference_consistency(s.stamps, s.paths, s.exact, rays, {1, 4, 16}, 0, 5000.0);
@@ -114,7 +102,7 @@ TEST_CASE("reference consistency: exact poses stay at the depth quantisation, a 
 
 TEST_CASE("reference consistency: an undecodable depth image is an error naming it", "[synth][stats][depth_geometry]") {
     test::TempDir tmp;
-    const synth::DepthRays rays(small_camera());
+    const synth::DepthRays rays(test::small_distorted_camera());
     Sequence s = write_room_sequence(tmp.path(), rays, 3);
     cv::imwrite(s.paths[1].string(), cv::Mat(240, 320, CV_8UC1, cv::Scalar(7)));
     CHECK_THROWS_WITH(synth::reference_consistency(s.stamps, s.paths, s.exact, rays, {1}, 0, 5000.0),
@@ -125,7 +113,7 @@ TEST_CASE("reference consistency: an undecodable depth image is an error naming 
 }
 
 TEST_CASE("ICP conditioning: a single wall is degenerate, a room corner constrains every motion", "[synth][stats][depth_geometry]") {
-    const synth::DepthRays rays(small_camera());
+    const synth::DepthRays rays(test::small_distorted_camera());
     const auto wall = synth::icp_conditioning(room_depth(rays, Eigen::Isometry3d::Identity(), true), rays);
     CHECK(wall.points > 1000);
     CHECK(wall.weakest < 1e-6);  // sliding along the wall and turning about its normal are unconstrained

@@ -3,6 +3,7 @@
 // fr1/rpy, must give that time back; and the real TUM sample's streams lag their stamps.
 #include "synth/stamp_latency.hpp"
 #include "synth/box_room.hpp"
+#include "synth/camera_catalog.hpp"
 #include "synth/frame_statistics.hpp"
 #include "test_support.hpp"
 
@@ -13,18 +14,6 @@
 using namespace vobench;
 
 namespace {
-
-synth::PinholeCamera small_camera() {
-    synth::PinholeCamera c;
-    c.width = 320;
-    c.height = 240;
-    c.fx = c.fy = 260.0;
-    c.cx = 159.5;
-    c.cy = 119.5;
-    c.distortion_count = 5;
-    c.distortion = {0.12, -0.2, 0.001, -0.002, 0.05, 0, 0, 0};
-    return c;
-}
 
 // A camera swinging in yaw and pitch at up to ≈ 1 rad/s (fr1/rpy's fast part: 2–4° a frame) and
 // drifting slowly, at time t.
@@ -68,7 +57,7 @@ void frames(const synth::DepthRays& rays, double color_ms, double depth_ms, synt
 
 TEST_CASE("stamp latency: images taken before their stamps give that time back, stamps that are exposures give 0",
           "[synth][stats][stamp_latency]") {
-    const synth::DepthRays rays(small_camera());
+    const synth::DepthRays rays(test::small_distorted_camera());
     const auto poses = reference(0.5, 2.8);
     for (const auto& [color_ms, depth_ms] : {std::pair{8.0, 20.0}, std::pair{0.0, 0.0}, std::pair{16.0, 4.0}}) {
         synth::LatencyFrames color, depth;
@@ -85,7 +74,7 @@ TEST_CASE("stamp latency: images taken before their stamps give that time back, 
 }
 
 TEST_CASE("stamp latency: a reference that does not cover the stamps gives no estimate", "[synth][stats][stamp_latency]") {
-    const synth::DepthRays rays(small_camera());
+    const synth::DepthRays rays(test::small_distorted_camera());
     synth::LatencyFrames color, depth;
     frames(rays, 8.0, 20.0, color, depth);
     const auto elsewhere = reference(10.0, 12.0);
@@ -98,15 +87,7 @@ TEST_CASE("stamp latency: a reference that does not cover the stamps gives no es
 TEST_CASE("stamp latency on the real TUM sample: depth lags its stamps by about 20 ms, colour by less",
           "[synth][stats][stamp_latency][reference]") {
     VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
-    synth::PinholeCamera fr1;  // TUM's published fr1 colour camera
-    fr1.width = 640;
-    fr1.height = 480;
-    fr1.fx = 517.3;
-    fr1.fy = 516.5;
-    fr1.cx = 318.6;
-    fr1.cy = 255.3;
-    fr1.distortion_count = 5;
-    fr1.distortion = {0.2624, -0.9531, -0.0054, 0.0026, 1.1633, 0, 0, 0};
+    const synth::PinholeCamera fr1 = synth::camera_by_name_or_file("tum-fr1").color;  // TUM's published fr1 colour camera
     double color = NAN, depth = NAN;
     for (const auto& v : synth::measure_folder(dir, 2, 5000.0, &fr1).values) {
         if (v.key == "stamps.color_latency_ms") color = v.value;
