@@ -20,10 +20,6 @@ constexpr int kColorStridePx = 4;
 constexpr float kMinGradient = 20.0f;  // Sobel magnitude of the blurred grey image (grey levels · 4)
 constexpr std::size_t kMinColorPoints = 200;
 
-double median_of(const std::vector<double>& v) {
-    return v.empty() ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(v).median;
-}
-
 // A pair's cost under the relative motion `j_from_i`, NaN when the two do not overlap enough.
 using PairCost = std::function<double(std::size_t i, std::size_t j, const Eigen::Isometry3d& j_from_i)>;
 
@@ -31,10 +27,12 @@ using PairCost = std::function<double(std::size_t i, std::size_t j, const Eigen:
 // every step sums the same pairs.
 LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajectory& reference, const PairCost& cost) {
     const double last_ms = kScanFromMs + (kScanSteps - 1) * kScanStepMs;
-    const auto covered = [&](double t) {
+    std::vector<bool> covered(stamps.size());
+    for (std::size_t k = 0; k < stamps.size(); ++k) {
         Eigen::Isometry3d unused;
-        return interpolate_pose(reference, t - kScanFromMs * 1e-3, unused) && interpolate_pose(reference, t - last_ms * 1e-3, unused);
-    };
+        covered[k] = interpolate_pose(reference, stamps[k] - kScanFromMs * 1e-3, unused) &&
+                     interpolate_pose(reference, stamps[k] - last_ms * 1e-3, unused);
+    }
     LatencyEstimate best;
     best.latency_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
     for (int step = 0; step < kScanSteps; ++step) {
@@ -46,7 +44,7 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
             std::vector<double> per_pair;
             for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < stamps.size(); ++i) {
                 const std::size_t j = i + static_cast<std::size_t>(gap);
-                if (!covered(stamps[i]) || !covered(stamps[j])) continue;
+                if (!covered[i] || !covered[j]) continue;
                 Eigen::Isometry3d pose_i, pose_j;
                 interpolate_pose(reference, stamps[i] - ms * 1e-3, pose_i);
                 interpolate_pose(reference, stamps[j] - ms * 1e-3, pose_j);
@@ -57,7 +55,7 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
                 every_gap = false;
                 break;
             }
-            total += median_of(per_pair);
+            total += metrics::compute_stats(per_pair).median;
             pairs += per_pair.size();
         }
         if (!every_gap) continue;
@@ -140,7 +138,7 @@ LatencyEstimate color_latency(const LatencyFrames& frames, const metrics::Trajec
             double there = 0;
             if (bilinear(images[j], pixels[k].x, pixels[k].y, there)) differences.push_back(std::abs(there - grey[k]));
         }
-        return differences.size() < kMinColorPoints ? std::numeric_limits<double>::quiet_NaN() : median_of(differences);
+        return differences.size() < kMinColorPoints ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(differences).median;
     });
 }
 
