@@ -4,10 +4,12 @@
 #include "synth/frame_plan.hpp"
 
 #include <opencv2/imgproc.hpp>
+#include <tbb/parallel_for.h>
 
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <vector>
 
 namespace vobench::synth {
 namespace {
@@ -33,13 +35,17 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
         covered[k] = interpolate_pose(reference, stamps[k] - kScanFromMs * 1e-3, unused) &&
                      interpolate_pose(reference, stamps[k] - last_ms * 1e-3, unused);
     }
-    LatencyEstimate best;
-    best.latency_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
-    for (int step = 0; step < kScanSteps; ++step) {
-        const double ms = kScanFromMs + step * kScanStepMs;
+    // The steps are independent: cost them in parallel, then choose in step order (the same choice,
+    // ties included, as a serial scan).
+    struct Step {
         double total = 0;
         std::size_t pairs = 0;
         bool every_gap = true;
+    };
+    std::vector<Step> steps(kScanSteps);
+    tbb::parallel_for(0, kScanSteps, [&](int step) {
+        const double ms = kScanFromMs + step * kScanStepMs;
+        Step& out = steps[static_cast<std::size_t>(step)];
         for (const int gap : kGaps) {
             std::vector<double> per_pair;
             for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < stamps.size(); ++i) {
@@ -52,18 +58,23 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
                 if (std::isfinite(c)) per_pair.push_back(c);
             }
             if (per_pair.empty()) {
-                every_gap = false;
-                break;
+                out.every_gap = false;
+                return;
             }
-            total += metrics::compute_stats(per_pair).median;
-            pairs += per_pair.size();
+            out.total += metrics::compute_stats(per_pair).median;
+            out.pairs += per_pair.size();
         }
-        if (!every_gap) continue;
-        if (step * kScanStepMs == -kScanFromMs) best.cost_at_zero = total;
-        if (!(total >= best.cost_at_best)) {  // also when cost_at_best is still NaN
-            best.cost_at_best = total;
-            best.latency_ms = ms;
-            best.pairs = pairs;
+    });
+    LatencyEstimate best;
+    best.latency_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    for (int step = 0; step < kScanSteps; ++step) {
+        const Step& s = steps[static_cast<std::size_t>(step)];
+        if (!s.every_gap) continue;
+        if (step * kScanStepMs == -kScanFromMs) best.cost_at_zero = s.total;
+        if (!(s.total >= best.cost_at_best)) {  // also when cost_at_best is still NaN
+            best.cost_at_best = s.total;
+            best.latency_ms = kScanFromMs + step * kScanStepMs;
+            best.pairs = s.pairs;
         }
     }
     return best;
