@@ -3,6 +3,7 @@
 // `vobench synth stats --camera` that need exact depth and poses.
 #pragma once
 
+#include "metrics/pose.hpp"
 #include "synth/depth_geometry.hpp"
 
 #include <Eigen/Geometry>
@@ -54,6 +55,30 @@ inline BoxRoomView box_room_view(const synth::DepthRays& rays, const Eigen::Isom
             view.grey.at<uchar>(v, u) = cv::saturate_cast<uchar>(shade);
         }
     return view;
+}
+
+// A camera in the room swinging in yaw and pitch at up to ≈ 1 rad/s (fr1/rpy's fast part: 2–4° a
+// frame) and drifting slowly, at time t.
+inline Eigen::Isometry3d swinging_pose(double t) {
+    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
+    p.linear() = (Eigen::AngleAxisd(0.16 * std::sin(2 * M_PI * 0.9 * t), Eigen::Vector3d::UnitY()) *
+                  Eigen::AngleAxisd(0.10 * std::sin(2 * M_PI * 1.3 * t + 0.5), Eigen::Vector3d::UnitX()))
+                     .toRotationMatrix();
+    p.translation() = Eigen::Vector3d(0.05 * t, 0.02 * std::sin(3 * t), 0.03 * t);
+    return p;
+}
+
+// Its reference: the poses at 100 Hz over [from, to], as a motion-capture system records them.
+inline metrics::Trajectory swinging_reference(double from, double to) {
+    metrics::Trajectory out;
+    for (double t = from; t <= to; t += 0.01) {
+        metrics::StampedPose p;
+        p.t = t;
+        p.p = swinging_pose(t).translation();
+        p.q = Eigen::Quaterniond(swinging_pose(t).linear());
+        out.push_back(p);
+    }
+    return out;
 }
 
 }  // namespace vobench::test

@@ -15,36 +15,12 @@ using namespace vobench;
 
 namespace {
 
-// A camera swinging in yaw and pitch at up to ≈ 1 rad/s (fr1/rpy's fast part: 2–4° a frame) and
-// drifting slowly, at time t.
-Eigen::Isometry3d swinging(double t) {
-    Eigen::Isometry3d p = Eigen::Isometry3d::Identity();
-    p.linear() = (Eigen::AngleAxisd(0.16 * std::sin(2 * M_PI * 0.9 * t), Eigen::Vector3d::UnitY()) *
-                  Eigen::AngleAxisd(0.10 * std::sin(2 * M_PI * 1.3 * t + 0.5), Eigen::Vector3d::UnitX()))
-                     .toRotationMatrix();
-    p.translation() = Eigen::Vector3d(0.05 * t, 0.02 * std::sin(3 * t), 0.03 * t);
-    return p;
-}
-
-// The reference: the camera's poses at 100 Hz, as a motion-capture system records them.
-metrics::Trajectory reference(double from, double to) {
-    metrics::Trajectory out;
-    for (double t = from; t <= to; t += 0.01) {
-        metrics::StampedPose p;
-        p.t = t;
-        p.p = swinging(t).translation();
-        p.q = Eigen::Quaterniond(swinging(t).linear());
-        out.push_back(p);
-    }
-    return out;
-}
-
 // Frames stamped 30 Hz apart whose colour was taken `color_ms` and depth `depth_ms` before the stamp.
 void frames(const synth::DepthRays& rays, double color_ms, double depth_ms, synth::LatencyFrames& color, synth::LatencyFrames& depth) {
     for (int k = 0; k < 36; ++k) {
         const double stamp = 1.0 + k / 30.0;
-        const auto seen_in_colour = test::box_room_view(rays, swinging(stamp - color_ms * 1e-3));
-        const cv::Mat depth_image = test::box_room_view(rays, swinging(stamp - depth_ms * 1e-3)).depth;
+        const auto seen_in_colour = test::box_room_view(rays, test::swinging_pose(stamp - color_ms * 1e-3));
+        const cv::Mat depth_image = test::box_room_view(rays, test::swinging_pose(stamp - depth_ms * 1e-3)).depth;
         color.stamps.push_back(stamp);
         color.grey.push_back(seen_in_colour.grey);
         color.depth_m.push_back(depth_image);  // registered depth, taken at its own time as a real sensor's is
@@ -58,7 +34,7 @@ void frames(const synth::DepthRays& rays, double color_ms, double depth_ms, synt
 TEST_CASE("stamp latency: images taken before their stamps give that time back, stamps that are exposures give 0",
           "[synth][stats][stamp_latency]") {
     const synth::DepthRays rays(test::small_distorted_camera());
-    const auto poses = reference(0.5, 2.8);
+    const auto poses = test::swinging_reference(0.5, 2.8);
     for (const auto& [color_ms, depth_ms] : {std::pair{8.0, 20.0}, std::pair{0.0, 0.0}, std::pair{16.0, 4.0}}) {
         synth::LatencyFrames color, depth;
         frames(rays, color_ms, depth_ms, color, depth);
@@ -77,7 +53,7 @@ TEST_CASE("stamp latency: a reference that does not cover the stamps gives no es
     const synth::DepthRays rays(test::small_distorted_camera());
     synth::LatencyFrames color, depth;
     frames(rays, 8.0, 20.0, color, depth);
-    const auto elsewhere = reference(10.0, 12.0);
+    const auto elsewhere = test::swinging_reference(10.0, 12.0);
     const auto d = synth::depth_latency(depth, elsewhere, rays);
     CHECK(d.pairs == 0);
     CHECK(std::isnan(d.latency_ms));

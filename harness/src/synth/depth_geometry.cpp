@@ -74,25 +74,37 @@ DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     for (const Eigen::Vector3d& d : map.dirs) rays_.push_back(d / d.z());
 }
 
-double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
-                           int stride_px) {
+PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                                   int stride_px) {
+    PairResiduals out;
     std::vector<cv::Point3f> moved;
+    std::vector<std::size_t> slot;  // where each moved point's residual goes
     for (int v = 0; v < depth_i.rows; v += stride_px)
         for (int u = 0; u < depth_i.cols; u += stride_px) {
+            out.relative.push_back(std::numeric_limits<double>::quiet_NaN());
             const float z = depth_i.at<float>(v, u);
-            if (z <= 0) continue;
+            if (!(z > 0)) continue;
             const Eigen::Vector3d q = j_from_i * rays.point(u, v, z);
-            if (q.z() > 0.05) moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+            if (q.z() <= 0.05) continue;
+            moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+            slot.push_back(out.relative.size() - 1);
         }
-    if (moved.size() < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
+    out.in_front = moved.size();
     const auto pixels = rays.project(moved);
-    std::vector<double> residuals;
     for (std::size_t k = 0; k < moved.size(); ++k) {
         double measured = 0;
-        if (!smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) continue;
-        const double r = std::abs(measured - moved[k].z) / moved[k].z;
-        if (r < kOcclusion) residuals.push_back(r);
+        if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
     }
+    return out;
+}
+
+double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                           int stride_px) {
+    const PairResiduals pair = depth_pair_residuals(depth_i, depth_j, j_from_i, rays, stride_px);
+    if (pair.in_front < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
+    std::vector<double> residuals;
+    for (const double r : pair.relative)
+        if (std::abs(r) < kOcclusion) residuals.push_back(std::abs(r));  // NaN compares false: left out
     return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
 }
 

@@ -56,6 +56,17 @@ cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale)
 // Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.
 void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera);
 
+// Frame i's depth (every `stride_px`-th pixel, row by row) moved by `j_from_i` onto frame j's: one
+// signed relative residual (z_j − z) / z per sampled pixel, bilinear on a smooth 2×2 neighbourhood of
+// frame j; NaN where the pixel has no depth, lands behind the camera or off frame j's smooth depth.
+// The same pixels in the same order for any motion, so residuals under two motions line up.
+struct PairResiduals {
+    std::vector<double> relative;
+    std::size_t in_front = 0;  // sampled points with depth that land in front of camera j
+};
+PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                                   int stride_px);
+
 // The median |relative residual| of frame i's depth (every `stride_px`-th pixel) moved by `j_from_i`
 // onto frame j's (bilinear on a smooth 2×2 neighbourhood, residuals over 5 % dropped as occlusions);
 // NaN when the two overlap in fewer than 500 points. Depths in metres, the camera's image size.

@@ -3,8 +3,8 @@
 #include "metrics/statistics.hpp"
 #include "synth/frame_plan.hpp"
 
-#include <opencv2/imgproc.hpp>
 #include <tbb/parallel_for.h>
+#include <opencv2/imgproc.hpp>
 
 #include <cmath>
 #include <functional>
