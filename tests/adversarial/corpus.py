@@ -354,6 +354,20 @@ def synth_inputs(args, w):
     check("synth stats --camera: a groundtruth.txt beside none of the frames leaves out the reference and latency statistics",
           r.returncode == 0 and "geometry.icp_condition" in stats and
           not any(k.startswith("reference.") or k.endswith("_latency_ms") for k in stats), r.stderr[-500:] + str(sorted(stats)))
+    # synth fit-distortion reads the same folders: a broken depth image, groundtruth.txt or --expect is
+    # refused naming it; a reference beside none of the frames gives no field (not one of zeros).
+    refused("fit-distortion on a folder without depth.txt", ["synth", "fit-distortion", os.path.join(d, "stats_no depth list")], r"depth\.txt")
+    refused("fit-distortion on a folder with an 8-bit depth image", ["synth", "fit-distortion", os.path.join(d, "stats_an 8-bit depth image"),
+            "--camera", "putk2-kinect1"], r"not a 16-bit single-channel PNG")
+    refused("fit-distortion on a folder whose groundtruth.txt has a NaN pose",
+            ["synth", "fit-distortion", os.path.join(d, "stats_gt_nan_pose"), "--camera", "putk2-kinect1"],
+            re.escape(os.path.join(d, "stats_gt_nan_pose", "groundtruth.txt")) + r":1")
+    refused("fit-distortion with a --camera of another image size", ["synth", "fit-distortion", ten, "--camera", small],
+            r"depth is 640×480, the camera's image 320×240")
+    refused("fit-distortion on a folder whose reference covers no frame pair",
+            ["synth", "fit-distortion", os.path.join(d, "stats_gt_elsewhere"), "--camera", "putk2-kinect1"], r"covers no pair")
+    refused("fit-distortion with an --expect that is not three numbers",
+            ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "1,2;rm -rf /"], r"not three numbers")
 
 
 def plot_inputs(args, w):

@@ -1,6 +1,7 @@
 // vobench synth — render a synthetic Kinect v1 / v2 RGB-D sequence with ground truth.
 #include "cli/commands.hpp"
 #include "synth/camera_catalog.hpp"
+#include "synth/disparity_distortion_fit.hpp"
 #include "synth/frame_statistics.hpp"
 #include "synth/sequence_writer.hpp"
 
@@ -14,6 +15,7 @@
 #include <cstdio>
 #include <iostream>
 #include <optional>
+#include <stdexcept>
 
 namespace vobench::cli {
 
@@ -75,6 +77,70 @@ CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
     return c;
 }
 
+// `vobench synth fit-distortion DIR`: a Kinect v1's fixed disparity distortion from a real folder and
+// its reference (disparity_distortion_fit.hpp); with --expect, a check that it reproduces given numbers.
+CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
+    auto* c = synth.add_subcommand("fit-distortion",
+                                   "Fit a Kinect v1's disparity distortion δ = a·r² + b·x + c·y px to a TUM folder's depth and reference");
+    static std::string folder, validate, camera = "tum-fr1", expect;
+    static double latency_ms = 20.0, tolerance = 0.05;
+    static synth::DistortionFitOptions options;
+    c->add_option("folder", folder, "TUM-layout folder with depth.txt and groundtruth.txt (depth 5000 units per metre)")->required();
+    c->add_option("--camera", camera, "The colour camera the depth is registered to (a name or a camera file)")->capture_default_str();
+    c->add_option("--validate", validate, "A second folder of the same camera: its residuals with and without the fitted field");
+    c->add_option("--depth-latency-ms", latency_ms, "The depth stream's latency (synth stats --camera measures it)")->capture_default_str();
+    c->add_option("--focal-baseline", options.focal_baseline_px_m, "IR focal length × baseline, px·m")->capture_default_str();
+    c->add_option("--iterations", options.iterations, "Gauss–Newton iterations")->check(CLI::Range(1, 100))->capture_default_str();
+    c->add_option("--expect", expect, "A,B,C: exit 1 unless the fit reproduces these coefficients and lowers the residual at 16 frames");
+    c->add_option("--tolerance", tolerance, "For --expect: largest difference per coefficient, px")->capture_default_str();
+    c->callback([&exit_code] {
+        options.depth_latency_s = latency_ms * 1e-3;
+        const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
+        const synth::DepthRays rays(spec.color);
+        std::optional<synth::DisparityOffset> expected;
+        if (!expect.empty()) {
+            synth::DisparityOffset e{};
+            char tail = 0;
+            if (std::sscanf(expect.c_str(), "%lf,%lf,%lf%c", &e[0], &e[1], &e[2], &tail) != 3)
+                throw std::runtime_error("--expect: '" + expect + "' is not three numbers A,B,C");
+            expected = e;
+        }
+        const synth::DepthSequence sequence = synth::read_depth_sequence(folder, spec.color, 5000.0);
+        const synth::DistortionFit fit = synth::fit_disparity_distortion(sequence, rays, options);
+        const auto& d = fit.delta;
+        std::cout << fmt::format("{}: δ = {:+.4f}·r² {:+.4f}·x {:+.4f}·y px ({} pairs, {} residuals)\n", folder, d[0], d[1], d[2],
+                                 fit.pairs, fit.residuals);
+        double without16 = 0, with16 = 0;
+        const auto report = [&](const std::string& name, const synth::DepthSequence& s, std::initializer_list<int> gaps) {
+            for (const int gap : gaps) {
+                std::size_t n = 0;
+                const double without = synth::corrected_residual_pct(s, rays, gap, {0, 0, 0}, options, n);
+                const double with = synth::corrected_residual_pct(s, rays, gap, d, options, n);
+                std::cout << fmt::format("{}: gap {:2d} ({} pairs): residual {:.3f} % -> {:.3f} % with the field\n", name, gap, n, without,
+                                         with);
+                if (&s == &sequence && gap == 16) without16 = without, with16 = with;
+            }
+        };
+        report(folder, sequence, {1, 4, 16});
+        if (!validate.empty()) report(validate, synth::read_depth_sequence(validate, spec.color, 5000.0), {1, 2, 4, 8});
+        exit_code = 0;
+        if (expected) {
+            double worst = 0;
+            for (int k = 0; k < 3; ++k)
+                worst = std::max(worst, std::abs(d[static_cast<std::size_t>(k)] - (*expected)[static_cast<std::size_t>(k)]));
+            const bool lowered = with16 < without16;
+            if (worst > tolerance || !lowered) {
+                std::cout << fmt::format("FAIL: fitted {:.3f}, {:.3f}, {:.3f}, expected {} ± {} px; residual at 16 frames lowered: {}\n",
+                                         d[0], d[1], d[2], expect, tolerance, lowered);
+                exit_code = 1;
+            } else {
+                std::cout << fmt::format("ok: the fit reproduces {} within {} px\n", expect, tolerance);
+            }
+        }
+    });
+    return c;
+}
+
 }  // namespace
 
 void add_synth_command(CLI::App& app, int& exit_code) {
@@ -106,8 +172,9 @@ void add_synth_command(CLI::App& app, int& exit_code) {
     c->add_option("--blur", blur, "Motion blur over the exposure: on or off")->check(CLI::IsMember({"on", "off"}))->capture_default_str();
     c->add_option("--out", out, "Output folder (required to render)");
     auto* stats = add_stats_command(*c, exit_code);
-    c->callback([&exit_code, c, stats] {
-        if (c->got_subcommand(stats)) return;
+    auto* fit = add_fit_distortion_command(*c, exit_code);
+    c->callback([&exit_code, c, stats, fit] {
+        if (c->got_subcommand(stats) || c->got_subcommand(fit)) return;
         if (out.empty()) throw CLI::RequiredError("--out");
         o.blur = blur == "on";
         o.out = out;

@@ -65,9 +65,10 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
     if (name == "putk2-kinect2") return {kinect2().color, 1};
     if (name == "tum-fr1") {
         // TUM fr1's Kinect: its depth's disparity offset field, measured from the real fr1/rpy frames
-        // and their reference alone (scripts/fit_depth_distortion.py; docs/synthetic-sensors.md).
+        // and their reference alone (`vobench synth fit-distortion`, depth latency 20 ms;
+        // docs/synthetic-sensors.md).
         CameraSpec fr1 = tum_camera(tum::kFr1);
-        fr1.disparity_distortion_px = {-0.833, 0.877, -0.450};
+        fr1.disparity_distortion_px = {-0.416, 1.065, -1.161};
         return fr1;
     }
     if (name == "tum-fr2") return tum_camera(tum::kFr2);

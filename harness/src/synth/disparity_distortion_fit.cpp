@@ -1,0 +1,154 @@
+#include "synth/disparity_distortion_fit.hpp"
+
+#include "metrics/statistics.hpp"
+#include "metrics/trajectory_io.hpp"
+#include "synth/frame_plan.hpp"
+#include "tum_lists.hpp"  // plugins/common
+#include "util/files.hpp"
+
+#include <tbb/parallel_for.h>
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace vobench::synth {
+namespace {
+
+constexpr int kStridePx = 8;
+constexpr int kFitGaps[] = {4, 16};
+constexpr double kOcclusion = 0.05;  // as depth_pair_residual: larger residuals are occlusions
+constexpr double kFloor = 0.005;     // IRLS weight 1 / max(|r|, this): an L1-like cost
+constexpr double kStep = 1e-3;       // forward-difference step, px
+constexpr std::size_t kMinPairPoints = 200;
+
+struct Pair {
+    std::size_t i, j;
+    Eigen::Isometry3d j_from_i;
+};
+
+// Pairs (i, i + gap) whose depth stamps, less the latency, the reference covers.
+std::vector<Pair> covered_pairs(const DepthSequence& s, const std::vector<int>& gaps, std::size_t step, double latency_s) {
+    std::vector<Pair> out;
+    for (const int gap : gaps)
+        for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < s.stamps.size(); i += step) {
+            const std::size_t j = i + static_cast<std::size_t>(gap);
+            Eigen::Isometry3d pose_i, pose_j;
+            if (!interpolate_pose(s.reference, s.stamps[i] - latency_s, pose_i) ||
+                !interpolate_pose(s.reference, s.stamps[j] - latency_s, pose_j))
+                continue;
+            out.push_back({i, j, pose_j.inverse() * pose_i});
+        }
+    return out;
+}
+
+std::vector<cv::Mat> corrected_images(const DepthSequence& s, const PinholeCamera& camera, const DisparityOffset& delta,
+                                      double focal_baseline) {
+    std::vector<cv::Mat> out(s.depth_m.size());
+    tbb::parallel_for(std::size_t{0}, out.size(),
+                      [&](std::size_t k) { out[k] = undo_disparity_offset(s.depth_m[k], camera, delta, focal_baseline); });
+    return out;
+}
+
+// Every pair's residuals, concatenated in pair order (the same slots for every offset).
+std::vector<double> all_residuals(const DepthSequence& s, const DepthRays& rays, const std::vector<Pair>& pairs,
+                                  const DisparityOffset& delta, double focal_baseline) {
+    const std::vector<cv::Mat> images = corrected_images(s, rays.camera(), delta, focal_baseline);
+    std::vector<std::vector<double>> per_pair(pairs.size());
+    tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t p) {
+        per_pair[p] = depth_pair_residuals(images[pairs[p].i], images[pairs[p].j], pairs[p].j_from_i, rays, kStridePx).relative;
+    });
+    std::vector<double> out;
+    for (const auto& r : per_pair) out.insert(out.end(), r.begin(), r.end());
+    return out;
+}
+
+}  // namespace
+
+DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale) {
+    DepthSequence s;
+    const auto list = tum::parse_list(read_file(folder / "depth.txt"), (folder / "depth.txt").string());
+    for (const auto& e : list) {
+        cv::Mat depth = read_depth_metres(folder / e.path, depth_scale);
+        require_camera_size(folder / e.path, depth, camera);
+        s.stamps.push_back(e.stamp);
+        s.depth_m.push_back(std::move(depth));
+    }
+    s.reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
+    return s;
+}
+
+cv::Mat undo_disparity_offset(const cv::Mat& depth_m, const PinholeCamera& camera, const DisparityOffset& delta, double focal_baseline) {
+    cv::Mat out(depth_m.size(), CV_32FC1);
+    for (int v = 0; v < depth_m.rows; ++v) {
+        const double y = (v - camera.cy) / camera.fy;
+        for (int u = 0; u < depth_m.cols; ++u) {
+            const float z = depth_m.at<float>(v, u);
+            const double x = (u - camera.cx) / camera.fx;
+            const double d = z > 0 ? focal_baseline / z - (delta[0] * (x * x + y * y) + delta[1] * x + delta[2] * y) : 0.0;
+            out.at<float>(v, u) = d > 0 ? static_cast<float>(focal_baseline / d) : 0.0f;
+        }
+    }
+    return out;
+}
+
+DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const DepthRays& rays, const DistortionFitOptions& options) {
+    const std::vector<Pair> pairs =
+        covered_pairs(sequence, std::vector<int>(std::begin(kFitGaps), std::end(kFitGaps)), 2, options.depth_latency_s);
+    if (pairs.empty()) throw std::runtime_error("fit-distortion: the reference covers no pair of depth frames 4 or 16 apart");
+    DistortionFit fit;
+    fit.pairs = pairs.size();
+    Eigen::Vector3d delta = Eigen::Vector3d::Zero();
+    const auto as_offset = [](const Eigen::Vector3d& d) { return DisparityOffset{d[0], d[1], d[2]}; };
+    for (int it = 0; it < options.iterations; ++it) {
+        const std::vector<double> r0 = all_residuals(sequence, rays, pairs, as_offset(delta), options.focal_baseline_px_m);
+        std::array<std::vector<double>, 3> moved;
+        for (int c = 0; c < 3; ++c)
+            moved[static_cast<std::size_t>(c)] =
+                all_residuals(sequence, rays, pairs, as_offset(delta + kStep * Eigen::Vector3d::Unit(c)), options.focal_baseline_px_m);
+        Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+        std::size_t used = 0;
+        for (std::size_t k = 0; k < r0.size(); ++k) {
+            const double r = r0[k];
+            if (!std::isfinite(r) || std::abs(r) > kOcclusion) continue;
+            Eigen::Vector3d J;
+            bool finite = true;
+            for (int c = 0; c < 3; ++c) {
+                J[c] = (moved[static_cast<std::size_t>(c)][k] - r) / kStep;
+                finite = finite && std::isfinite(J[c]);
+            }
+            if (!finite) continue;
+            const double w = 1.0 / std::max(std::abs(r), kFloor);
+            normal += w * J * J.transpose();
+            rhs += w * J * r;
+            ++used;
+        }
+        const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
+        if (used < 3 * kMinPairPoints || !lu.isInvertible())
+            throw std::runtime_error("fit-distortion: too few depth residuals (" + std::to_string(used) + ") to fit three coefficients");
+        delta -= lu.solve(rhs);
+        fit.residuals = used;
+    }
+    fit.delta = as_offset(delta);
+    return fit;
+}
+
+double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& rays, int gap, const DisparityOffset& delta,
+                              const DistortionFitOptions& options, std::size_t& pairs) {
+    const std::vector<Pair> chosen = covered_pairs(sequence, {gap}, 1, options.depth_latency_s);
+    const std::vector<cv::Mat> images = corrected_images(sequence, rays.camera(), delta, options.focal_baseline_px_m);
+    std::vector<double> per_pair(chosen.size(), std::numeric_limits<double>::quiet_NaN());
+    tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t p) {
+        per_pair[p] = depth_pair_residual(images[chosen[p].i], images[chosen[p].j], chosen[p].j_from_i, rays, kStridePx);
+    });
+    std::vector<double> finite;
+    for (const double r : per_pair)
+        if (std::isfinite(r)) finite.push_back(100.0 * r);
+    pairs = finite.size();
+    return finite.empty() ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(finite).median;
+}
+
+}  // namespace vobench::synth

@@ -1,0 +1,66 @@
+// disparity_distortion_fit.hpp — a Kinect v1's fixed disparity distortion, measured from a TUM-layout
+// folder's depth images and its reference alone (issue #15; `vobench synth fit-distortion`; the numbers
+// behind the `tum-fr1` camera's disparity_distortion_px, camera_catalog.cpp).
+//
+// Model (Herrera et al. 2012; Teichman et al. 2013): every measured disparity carries a fixed offset
+// δ(x, y) = a·r² + b·x + c·y pixels (x, y pinhole-normalised pixel coordinates, r² = x² + y²), so a
+// measured depth z_m was really z = f·b_IR / (f·b_IR / z_m − δ). The depth error grows as z²·δ / (f·b_IR)
+// — harmless at 1 m, centimetres at 3–4 m — and stays with the camera, not the scene, so consecutive
+// views of one surface disagree more the further the camera turned. The fit minimises that
+// disagreement: frame i's corrected depth, moved by the reference's motion (poses at each depth stamp
+// less the depth stream's latency, stamp_latency.hpp) onto frame j's corrected depth
+// (depth_pair_residuals, every 8th pixel), for pairs 4 and 16 frames apart starting at every second
+// frame; Gauss–Newton on (a, b, c) from zero with a forward-difference Jacobian, robust by iterative
+// reweighting (weights 1 / max(|r|, 0.5 %), residuals over 5 % dropped as occlusions).
+#pragma once
+
+#include "metrics/pose.hpp"
+#include "synth/depth_geometry.hpp"
+
+#include <array>
+#include <filesystem>
+#include <vector>
+
+namespace vobench::synth {
+
+// A TUM-layout folder's depth stream in list order (consecutive frames) and its reference.
+struct DepthSequence {
+    std::vector<double> stamps;
+    std::vector<cv::Mat> depth_m;  // metres, CV_32FC1, 0 = missing, the camera's image size
+    metrics::Trajectory reference;
+};
+
+// Reads depth.txt, every depth image it lists (`depth_scale` units per metre) and groundtruth.txt.
+// Throws std::runtime_error naming the file (and line) that is missing, malformed, not a 16-bit
+// depth image or not the camera's size.
+DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale);
+
+using DisparityOffset = std::array<double, 3>;  // a, b, c in pixels
+
+// The depth corrected for the offset: z = f·b / (f·b / z_m − δ(x, y)); 0 where z_m is 0 or the corrected
+// disparity is not positive.
+cv::Mat undo_disparity_offset(const cv::Mat& depth_m, const PinholeCamera& camera, const DisparityOffset& delta,
+                              double focal_baseline_px_m);
+
+struct DistortionFitOptions {
+    double depth_latency_s = 0.020;            // the depth stream's latency (synth stats --camera measures it)
+    double focal_baseline_px_m = 580 * 0.075;  // IR focal length × baseline (Khoshelham & Elberink 2012)
+    int iterations = 14;
+};
+
+struct DistortionFit {
+    DisparityOffset delta{0, 0, 0};
+    std::size_t pairs = 0;      // frame pairs the reference covers
+    std::size_t residuals = 0;  // residuals in the last iteration's solve
+};
+
+// Throws std::runtime_error when no pair the reference covers overlaps, or the normal equations are
+// singular (too few residuals to pin three coefficients down).
+DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const DepthRays& rays, const DistortionFitOptions& options);
+
+// Median over pairs (k, k + gap), every k, of depth_pair_residual with the offset undone, in per cent
+// of z (NaN: no pair); `pairs` gets how many counted.
+double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& rays, int gap, const DisparityOffset& delta,
+                              const DistortionFitOptions& options, std::size_t& pairs);
+
+}  // namespace vobench::synth

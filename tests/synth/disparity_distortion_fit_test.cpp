@@ -1,0 +1,104 @@
+// `vobench synth fit-distortion` (disparity_distortion_fit.hpp): depth of the test box room distorted by
+// a known disparity offset field while the camera swings must give that field back; a folder that
+// cannot be read is an error naming the file.
+#include "synth/disparity_distortion_fit.hpp"
+#include "synth/box_room.hpp"
+#include "test_support.hpp"
+
+#include <catch2/catch.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <cmath>
+#include <fstream>
+
+using namespace vobench;
+
+namespace {
+
+constexpr double kFocalBaseline = 580 * 0.075;
+
+// What a Kinect with the offset field `delta` measures of the true depth `z`: disparity + δ(x, y).
+cv::Mat distorted(const cv::Mat& z, const synth::PinholeCamera& c, const synth::DisparityOffset& delta) {
+    cv::Mat out(z.size(), CV_32FC1, cv::Scalar(0));
+    for (int v = 0; v < z.rows; ++v)
+        for (int u = 0; u < z.cols; ++u) {
+            const double x = (u - c.cx) / c.fx, y = (v - c.cy) / c.fy, depth = z.at<float>(v, u);
+            if (depth > 0)
+                out.at<float>(v, u) = static_cast<float>(
+                    kFocalBaseline / (kFocalBaseline / depth + delta[0] * (x * x + y * y) + delta[1] * x + delta[2] * y));
+        }
+    return out;
+}
+
+// 48 frames at 30 Hz of the swinging camera, depth distorted by `delta`, with the exact reference.
+synth::DepthSequence room_sequence(const synth::DepthRays& rays, const synth::DisparityOffset& delta) {
+    synth::DepthSequence s;
+    s.reference = test::swinging_reference(0.5, 3.0);
+    for (int k = 0; k < 48; ++k) {
+        const double stamp = 1.0 + k / 30.0;
+        s.stamps.push_back(stamp);
+        s.depth_m.push_back(distorted(test::box_room_view(rays, test::swinging_pose(stamp)).depth, rays.camera(), delta));
+    }
+    return s;
+}
+
+}  // namespace
+
+TEST_CASE("disparity offset: undoing it inverts what the sensor added", "[synth][stats][distortion]") {
+    const auto camera = test::small_distorted_camera();
+    const synth::DepthRays rays(camera);
+    const synth::DisparityOffset delta{-0.6, 0.9, -0.4};
+    const cv::Mat truth = test::box_room_view(rays, test::swinging_pose(1.0)).depth;
+    const cv::Mat back = synth::undo_disparity_offset(distorted(truth, camera, delta), camera, delta, kFocalBaseline);
+    double worst = 0;
+    for (int v = 0; v < truth.rows; ++v)
+        for (int u = 0; u < truth.cols; ++u) worst = std::max(worst, std::abs(double(back.at<float>(v, u)) - truth.at<float>(v, u)));
+    CHECK(worst < 1e-5);
+    // Missing depth stays missing; no offset leaves the depth as it is.
+    cv::Mat holes = truth.clone();
+    holes.at<float>(10, 10) = 0;
+    CHECK(synth::undo_disparity_offset(holes, camera, delta, kFocalBaseline).at<float>(10, 10) == 0.0f);
+    CHECK(cv::norm(synth::undo_disparity_offset(truth, camera, {0, 0, 0}, kFocalBaseline), truth, cv::NORM_INF) < 1e-5);
+}
+
+TEST_CASE("fit-distortion: a known disparity offset field is found again, and none where the sensor has none",
+          "[synth][stats][distortion]") {
+    const synth::DepthRays rays(test::small_distorted_camera());
+    synth::DistortionFitOptions options;
+    options.depth_latency_s = 0;  // the images are taken at their stamps here
+    options.iterations = 6;
+    for (const synth::DisparityOffset truth : {synth::DisparityOffset{-0.6, 0.9, -0.4}, synth::DisparityOffset{0, 0, 0}}) {
+        const synth::DepthSequence s = room_sequence(rays, truth);
+        const synth::DistortionFit fit = synth::fit_disparity_distortion(s, rays, options);
+        INFO("truth " << truth[0] << ", " << truth[1] << ", " << truth[2] << " → " << fit.delta[0] << ", " << fit.delta[1] << ", "
+                      << fit.delta[2] << " (" << fit.pairs << " pairs, " << fit.residuals << " residuals)");
+        for (std::size_t k = 0; k < 3; ++k) CHECK(std::abs(fit.delta[k] - truth[k]) < 0.03);
+        CHECK(fit.pairs == 16 + 22);  // every second start: (48 − 16) / 2 and (48 − 4) / 2
+        std::size_t pairs = 0;
+        const double without = synth::corrected_residual_pct(s, rays, 16, {0, 0, 0}, options, pairs);
+        const double with = synth::corrected_residual_pct(s, rays, 16, fit.delta, options, pairs);
+        CHECK(pairs == 32);
+        CHECK(with < 0.01);  // exact depth and poses: only float rounding remains
+        if (truth[1] != 0) CHECK(without > 0.1);
+    }
+}
+
+TEST_CASE("fit-distortion: a folder that cannot be read is an error naming the file", "[synth][stats][distortion][corpus]") {
+    test::TempDir tmp;
+    const auto camera = test::small_distorted_camera();
+    const auto folder = tmp.path();
+    CHECK_THROWS_WITH(synth::read_depth_sequence(folder, camera, 5000.0), Catch::Contains("depth.txt"));
+    std::filesystem::create_directories(folder / "depth");
+    std::ofstream(folder / "depth.txt") << "# depth\n1.0 depth/1.png\n1.5\n";
+    CHECK_THROWS_WITH(synth::read_depth_sequence(folder, camera, 5000.0), Catch::Contains("depth.txt") && Catch::Contains("3"));
+    std::ofstream(folder / "depth.txt") << "# depth\n1.0 depth/1.png\n";
+    cv::imwrite((folder / "depth" / "1.png").string(), cv::Mat(100, 100, CV_16UC1, cv::Scalar(7000)));
+    CHECK_THROWS_WITH(synth::read_depth_sequence(folder, camera, 5000.0), Catch::Contains("1.png") && Catch::Contains("100×100"));
+    cv::imwrite((folder / "depth" / "1.png").string(), cv::Mat(camera.height, camera.width, CV_16UC1, cv::Scalar(7000)));
+    CHECK_THROWS_WITH(synth::read_depth_sequence(folder, camera, 5000.0), Catch::Contains("groundtruth.txt"));
+    // Read, but no pair to fit: an error, not a field of zeros.
+    std::ofstream(folder / "groundtruth.txt") << "1.0 0 0 0 0 0 0 1\n1.1 0 0 0 0 0 0 1\n";
+    const synth::DepthSequence one = synth::read_depth_sequence(folder, camera, 5000.0);
+    CHECK(one.depth_m.size() == 1);
+    CHECK_THROWS_WITH(synth::fit_disparity_distortion(one, synth::DepthRays(camera), {}), Catch::Contains("no pair"));
+}
