@@ -19,10 +19,10 @@ namespace {
 
 constexpr int kStridePx = 8;
 constexpr int kFitGaps[] = {4, 16};
-constexpr double kOcclusion = 0.05;  // as depth_pair_residual: larger residuals are occlusions
-constexpr double kFloor = 0.005;     // IRLS weight 1 / max(|r|, this): an L1-like cost
-constexpr double kStep = 1e-3;       // forward-difference step, px
-constexpr std::size_t kMinPairPoints = 200;
+constexpr double kOcclusion = 0.05;         // as depth_pair_residual: larger residuals are occlusions
+constexpr double kFloor = 0.005;            // IRLS weight 1 / max(|r|, this): an L1-like cost
+constexpr double kStep = 1e-3;              // forward-difference step, px
+constexpr std::size_t kMinResiduals = 600;  // below this, three coefficients are not pinned down
 
 struct Pair {
     std::size_t i, j;
@@ -127,7 +127,7 @@ DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const Dept
             ++used;
         }
         const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
-        if (used < 3 * kMinPairPoints || !lu.isInvertible())
+        if (used < kMinResiduals || !lu.isInvertible())
             throw std::runtime_error("fit-distortion: too few depth residuals (" + std::to_string(used) + ") to fit three coefficients");
         delta -= lu.solve(rhs);
         fit.residuals = used;
