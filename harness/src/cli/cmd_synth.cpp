@@ -16,6 +16,7 @@
 #include <iostream>
 #include <optional>
 #include <stdexcept>
+#include <utility>
 
 namespace vobench::cli {
 
@@ -110,18 +111,19 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
         const auto& d = fit.delta;
         std::cout << fmt::format("{}: δ = {:+.4f}·r² {:+.4f}·x {:+.4f}·y px ({} pairs, {} residuals)\n", folder, d[0], d[1], d[2],
                                  fit.pairs, fit.residuals);
-        double without16 = 0, with16 = 0;
+        // Each gap's residual without and with the field, printed; returns the last gap's pair.
         const auto report = [&](const std::string& name, const synth::DepthSequence& s, std::initializer_list<int> gaps) {
+            std::pair<double, double> last{0, 0};
             for (const int gap : gaps) {
                 std::size_t n = 0;
-                const double without = synth::corrected_residual_pct(s, rays, gap, {0, 0, 0}, options, n);
-                const double with = synth::corrected_residual_pct(s, rays, gap, d, options, n);
-                std::cout << fmt::format("{}: gap {:2d} ({} pairs): residual {:.3f} % -> {:.3f} % with the field\n", name, gap, n, without,
-                                         with);
-                if (&s == &sequence && gap == 16) without16 = without, with16 = with;
+                last.first = synth::corrected_residual_pct(s, rays, gap, {0, 0, 0}, options, n);
+                last.second = synth::corrected_residual_pct(s, rays, gap, d, options, n);
+                std::cout << fmt::format("{}: gap {:2d} ({} pairs): residual {:.3f} % -> {:.3f} % with the field\n", name, gap, n,
+                                         last.first, last.second);
             }
+            return last;
         };
-        report(folder, sequence, {1, 4, 16});
+        const auto [without16, with16] = report(folder, sequence, {1, 4, 16});
         if (!validate.empty()) report(validate, synth::read_depth_sequence(validate, spec.color, 5000.0), {1, 2, 4, 8});
         exit_code = 0;
         if (expected) {

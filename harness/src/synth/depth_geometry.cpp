@@ -19,7 +19,6 @@ namespace vobench::synth {
 namespace {
 
 constexpr int kStridePx = 4;              // sampled pixels (consistency) and normal baseline (conditioning)
-constexpr double kOcclusion = 0.05;       // relative residuals beyond this are occlusions, not errors
 constexpr double kSmooth = 0.03;          // a bilinear lookup needs its 2×2 depths within 3 % of each other
 constexpr std::size_t kMinOverlap = 500;  // points a pair needs to count
 constexpr double kIcpRange = 4.0;         // metres: OpenCV's ICP default maximum depth
@@ -104,7 +103,7 @@ double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const
     if (pair.in_front < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
     std::vector<double> residuals;
     for (const double r : pair.relative)
-        if (std::abs(r) < kOcclusion) residuals.push_back(std::abs(r));  // NaN compares false: left out
+        if (std::abs(r) < kOcclusionResidual) residuals.push_back(std::abs(r));  // NaN compares false: left out
     return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
 }
 
@@ -165,7 +164,7 @@ IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays) 
             const float z = depth_m.at<float>(v, u);
             const float zl = depth_m.at<float>(v, u - s), zr = depth_m.at<float>(v, u + s), zt = depth_m.at<float>(v - s, u),
                         zb = depth_m.at<float>(v + s, u);
-            if (std::abs(zr - zl) > kOcclusion * z || std::abs(zb - zt) > kOcclusion * z) continue;  // a depth edge
+            if (std::abs(zr - zl) > kOcclusionResidual * z || std::abs(zb - zt) > kOcclusionResidual * z) continue;  // a depth edge
             const Eigen::Vector3d p = rays.point(u, v, z);
             const Eigen::Vector3d du = rays.point(u + s, v, zr) - rays.point(u - s, v, zl);
             const Eigen::Vector3d dv = rays.point(u, v + s, zb) - rays.point(u, v - s, zt);

@@ -56,6 +56,9 @@ cv::Mat read_depth_metres(const std::filesystem::path& path, double depth_scale)
 // Throws std::runtime_error naming `depth_path` when `depth` is not the camera's image size.
 void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat& depth, const PinholeCamera& camera);
 
+// Relative depth residuals beyond this are occlusions (another surface), not errors.
+constexpr double kOcclusionResidual = 0.05;
+
 // Frame i's depth (every `stride_px`-th pixel, row by row) moved by `j_from_i` onto frame j's: one
 // signed relative residual (z_j − z) / z per sampled pixel, bilinear on a smooth 2×2 neighbourhood of
 // frame j; NaN where the pixel has no depth, lands behind the camera or off frame j's smooth depth.

@@ -19,7 +19,6 @@ namespace {
 
 constexpr int kStridePx = 8;
 constexpr int kFitGaps[] = {4, 16};
-constexpr double kOcclusion = 0.05;         // as depth_pair_residual: larger residuals are occlusions
 constexpr double kFloor = 0.005;            // IRLS weight 1 / max(|r|, this): an L1-like cost
 constexpr double kStep = 1e-3;              // forward-difference step, px
 constexpr std::size_t kMinResiduals = 600;  // below this, three coefficients are not pinned down
@@ -113,7 +112,7 @@ DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const Dept
         std::size_t used = 0;
         for (std::size_t k = 0; k < r0.size(); ++k) {
             const double r = r0[k];
-            if (!std::isfinite(r) || std::abs(r) > kOcclusion) continue;
+            if (!std::isfinite(r) || std::abs(r) > kOcclusionResidual) continue;
             Eigen::Vector3d J;
             bool finite = true;
             for (int c = 0; c < 3; ++c) {
