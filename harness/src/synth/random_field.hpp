@@ -19,6 +19,17 @@ inline uint64_t hash(uint64_t a, uint64_t b) { return mix64(a ^ mix64(b)); }
 inline uint64_t hash(uint64_t a, uint64_t b, uint64_t c) { return hash(hash(a, b), c); }
 inline uint64_t hash(uint64_t a, uint64_t b, uint64_t c, uint64_t d) { return hash(hash(a, b, c), d); }
 
+// hash(a, b, c, ·) with its first three arguments mixed once: the per-pixel stream of one effect in
+// one frame, hash(a, b, c, d) == HashStream(a, b, c)(d). Two mixing rounds a draw instead of six.
+class HashStream {
+public:
+    HashStream(uint64_t a, uint64_t b, uint64_t c) : prefix_(hash(a, b, c)) {}
+    uint64_t operator()(uint64_t d) const { return hash(prefix_, d); }
+
+private:
+    uint64_t prefix_;
+};
+
 // Uniform in [0, 1).
 inline double uniform(uint64_t h) { return static_cast<double>(h >> 11) * (1.0 / 9007199254740992.0); }
 

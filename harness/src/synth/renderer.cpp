@@ -183,6 +183,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     const double noise_dn = fx.image_noise ? sensor_.color_noise_dn : 0.0;
     const double contrast = fx.tone_curve ? sensor_.tone_contrast : 1.0;
     out.color.create(H, W, CV_8UC3);
+    const HashStream color_noise(seed_, kColorNoise, frame);
     tbb::parallel_for(0, H, [&](int v) {
         for (int u = 0; u < W; ++u) {
             const double du = u - sensor_.color.cx, dv = v - sensor_.color.cy;
@@ -191,7 +192,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
             cv::Vec3b& px = out.color.at<cv::Vec3b>(v, u);
             for (int ch = 0; ch < 3; ++ch) {
                 const double noise =
-                    noise_dn > 0 ? noise_dn * gaussian_fast(hash(seed_, kColorNoise, frame, (static_cast<uint64_t>(v) * W + u) * 3 + ch))
+                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise((static_cast<uint64_t>(v) * W + u) * 3 + ch))
                                  : 0.0;
                 // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
                 // measured on the real images, tone curve and all).

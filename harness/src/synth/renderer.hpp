@@ -5,6 +5,7 @@
 #pragma once
 
 #include "synth/frame_plan.hpp"
+#include "synth/random_field.hpp"
 #include "synth/scene.hpp"
 #include "synth/sensor_model.hpp"
 
@@ -69,16 +70,21 @@ private:
                                                     double readout_s, int rows);
 
     void render_color(uint64_t frame, const PlannedFrame& f, bool blur, RenderedFrame& out) const;
+    // One frame's per-pixel random streams of the depth effects, each mixed from (seed, salt, frame) once.
+    struct DepthStreams {
+        DepthStreams(uint64_t seed, uint64_t frame);
+        HashStream lateral, lost_return, disparity, edge_dropout, dropout, tof, flying, flying_mix;
+    };
     struct DepthRay {
         Hit hit;
         double z = 0;          // depth along the depth camera's optical axis
         double incidence = 0;  // angle between ray and surface normal, rad
     };
     // One depth pixel's ray, with lateral jitter; false when it hits nothing.
-    bool cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const;
+    bool cast_depth_ray(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const;
     // Whether the return of a depth ray is lost on the surface it hit (dark, glossy, glass; and for
     // Kinect v1 with range): blobs fixed on the surface, their edges flickering from frame to frame.
-    bool return_lost(uint64_t frame, uint64_t pixel, const DepthRay& ray) const;
+    bool return_lost(const DepthStreams& random, uint64_t pixel, const DepthRay& ray) const;
     void render_depth_structured_light(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
 

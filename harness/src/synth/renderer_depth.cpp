@@ -16,7 +16,17 @@
 
 namespace vobench::synth {
 
-bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const {
+Renderer::DepthStreams::DepthStreams(uint64_t seed, uint64_t frame)
+    : lateral(seed, kLateral, frame),
+      lost_return(seed, kLostReturn, frame),
+      disparity(seed, kDisparityNoise, frame),
+      edge_dropout(seed, kEdgeDropout, frame),
+      dropout(seed, kDropout, frame),
+      tof(seed, kTofNoise, frame),
+      flying(seed, kFlying, frame),
+      flying_mix(seed, kFlyingMix, frame) {}
+
+bool Renderer::cast_depth_ray(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const {
     // Lateral noise: the sampling position jitters by a fraction of a pixel.
     const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
     Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
@@ -28,8 +38,8 @@ bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pos
     }
     if (sensor_.effects.depth_noise) {
         const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
-        dir_cam.x() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel));
-        dir_cam.y() += lateral * gaussian(hash(seed_, kLateral, frame, 2 * pixel + 1));
+        dir_cam.x() += lateral * gaussian(random.lateral(2 * pixel));
+        dir_cam.y() += lateral * gaussian(random.lateral(2 * pixel + 1));
     }
     dir_cam.normalize();
     const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
@@ -39,7 +49,7 @@ bool Renderer::cast_depth_ray(uint64_t frame, const Eigen::Isometry3d& depth_pos
     return true;
 }
 
-bool Renderer::return_lost(uint64_t frame, uint64_t pixel, const DepthRay& ray) const {
+bool Renderer::return_lost(const DepthStreams& random, uint64_t pixel, const DepthRay& ray) const {
     const Effects& fx = sensor_.effects;
     const Material& m = scene_.materials[static_cast<std::size_t>(ray.hit.material)];
     double p = 0;
@@ -58,7 +68,7 @@ bool Renderer::return_lost(uint64_t frame, uint64_t pixel, const DepthRay& ray) 
     // flickering a little from frame to frame.
     const double field =
         0.5 + 0.8 * lattice_noise(ray.hit.u / sensor_.dropout_blob_m, ray.hit.v / sensor_.dropout_blob_m, m.seed ^ 0xd1b54a32d192ed03ull);
-    const double flicker = 0.15 * (uniform(hash(seed_, kLostReturn, frame, pixel)) - 0.5);
+    const double flicker = 0.15 * (uniform(random.lost_return(pixel)) - 0.5);
     return std::clamp(field, 0.0, 1.0) + flicker < p;
 }
 
@@ -67,6 +77,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     // projector pattern (Khoshelham & Elberink 2012): z = f·b/d, d quantised to 1/8 px with noise.
     const Effects& fx = sensor_.effects;
     const int W = depth_rays_.width, H = depth_rays_.height;
+    const DepthStreams random(seed_, frame);
     // Registered: the depth grid is the colour camera's. The IR camera's rolling shutter moves it
     // while the rows are read (the colour camera's motion at the depth stamp: they are ~10 ms apart).
     const Eigen::Isometry3d next = f.depth_pose * (f.color_pose.inverse() * f.next_pose);
@@ -96,13 +107,13 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
             DepthRay ray;
             const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
-            if (!cast_depth_ray(frame, depth_pose, u, v, ray)) continue;
+            if (!cast_depth_ray(random, depth_pose, u, v, ray)) continue;
             const double z = ray.z;
             truth.at<float>(v, u) = static_cast<float>(z);
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
             if (fx.depth_border && (u >= right || v < top || v >= bottom || u < sensor_.border_left_px_m * px / z)) continue;
             if (fx.glancing_dropout && ray.incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
-            if (return_lost(frame, pixel, ray)) continue;
+            if (return_lost(random, pixel, ray)) continue;
             const Hit& hit = ray.hit;
             // The projector's shadow: a point the pattern cannot reach has no disparity.
             if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) continue;
@@ -113,7 +124,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             }
             double d = fb / z + offset;
             if (fx.depth_noise) {
-                d += sensor_.disparity_sigma_px * gaussian(hash(seed_, kDisparityNoise, frame, pixel));
+                d += sensor_.disparity_sigma_px * gaussian(random.disparity(pixel));
                 if (correlated) d += correlated_sigma * correlated->at(u, v);
                 d = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
             }
@@ -133,7 +144,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                     const float n = truth.at<float>(v + (k == 2) - (k == 3), u + (k == 0) - (k == 1));
                     step = n <= 0 || std::abs(n - z) > 0.05f * z;
                 }
-                if (step && uniform(hash(seed_, kEdgeDropout, frame, static_cast<uint64_t>(v) * W + u)) < sensor_.edge_dropout_probability)
+                if (step && uniform(random.edge_dropout(static_cast<uint64_t>(v) * W + u)) < sensor_.edge_dropout_probability)
                     out.depth_native.at<float>(v, u) = 0;
             }
         });
@@ -153,6 +164,7 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f
     // (2015); flying pixels mixing fore- and background at discontinuities; isolated dropouts.
     const Effects& fx = sensor_.effects;
     const int W = depth_rays_.width, H = depth_rays_.height;
+    const DepthStreams random(seed_, frame);
     // A global shutter: one pose for the whole image.
     const Eigen::Isometry3d depth_pose = f.depth_pose * sensor_.depth_in_color;
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1), noisy = cv::Mat::zeros(H, W, CV_32FC1);
@@ -160,14 +172,14 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f
         for (int u = 0; u < W; ++u) {
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
             DepthRay ray;
-            if (!cast_depth_ray(frame, depth_pose, u, v, ray)) continue;
+            if (!cast_depth_ray(random, depth_pose, u, v, ray)) continue;
             const double z = ray.z, incidence = ray.incidence;
             truth.at<float>(v, u) = static_cast<float>(z);
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
             if (fx.glancing_dropout && incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
-            if (fx.dark_dropout && uniform(hash(seed_, kDropout, frame, pixel)) < sensor_.dropout_probability) continue;
-            if (return_lost(frame, pixel, ray)) continue;
-            const double noise = fx.depth_noise ? kinect2_sigma_z(z, incidence) * gaussian(hash(seed_, kTofNoise, frame, pixel)) : 0.0;
+            if (fx.dark_dropout && uniform(random.dropout(pixel)) < sensor_.dropout_probability) continue;
+            if (return_lost(random, pixel, ray)) continue;
+            const double noise = fx.depth_noise ? kinect2_sigma_z(z, incidence) * gaussian(random.tof(pixel)) : 0.0;
             noisy.at<float>(v, u) = static_cast<float>(z + noise);
         }
     });
@@ -188,8 +200,8 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f
                 }
                 if (other == z) continue;
                 const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-                if (uniform(hash(seed_, kFlying, frame, pixel)) >= sensor_.flying_pixel_probability) continue;
-                const double alpha = 0.15 + 0.7 * uniform(hash(seed_, kFlyingMix, frame, pixel));
+                if (uniform(random.flying(pixel)) >= sensor_.flying_pixel_probability) continue;
+                const double alpha = 0.15 + 0.7 * uniform(random.flying_mix(pixel));
                 out.depth_native.at<float>(v, u) = static_cast<float>(noisy.at<float>(v, u) + alpha * (other - z));
             }
         });
