@@ -13,7 +13,8 @@ namespace vobench::files {
 namespace {
 
 void put32(std::vector<uint8_t>& out, uint32_t v) {
-    const uint8_t b[4] = {static_cast<uint8_t>(v >> 24), static_cast<uint8_t>(v >> 16), static_cast<uint8_t>(v >> 8), static_cast<uint8_t>(v)};
+    const uint8_t b[4] = {static_cast<uint8_t>(v >> 24), static_cast<uint8_t>(v >> 16), static_cast<uint8_t>(v >> 8),
+                          static_cast<uint8_t>(v)};
     out.insert(out.end(), b, b + 4);
 }
 
@@ -49,7 +50,8 @@ void raw_row(const cv::Mat& image, int y, uint8_t* out) {
 std::vector<uint8_t> encode_png(const cv::Mat& image, int level) {
     const int type = image.type();
     if (image.empty() || (type != CV_8UC3 && type != CV_8UC1 && type != CV_16UC1))
-        throw std::invalid_argument("encode_png: an 8-bit BGR, 8-bit grey or 16-bit grey image is needed, not type " + std::to_string(type));
+        throw std::invalid_argument("encode_png: an 8-bit BGR, 8-bit grey or 16-bit grey image is needed, not type " +
+                                    std::to_string(type));
     const std::size_t bpp = type == CV_8UC3 ? 3 : type == CV_16UC1 ? 2 : 1;  // bytes per pixel
     const std::size_t row_bytes = bpp * static_cast<std::size_t>(image.cols);
     const std::size_t rows = static_cast<std::size_t>(image.rows);

@@ -96,6 +96,47 @@ bool RayIndex::nearest(const Eigen::Vector3d& o, const Eigen::Vector3d& d, doubl
     return true;
 }
 
+void RayIndex::nearest_packet(const Eigen::Vector3d& o, const Eigen::Vector3d* dirs, int count, double t_min, double t_max,
+                              IndexHit* hits) const {
+    RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    alignas(32) int valid[kPacket];
+    RTCRayHit8 rh;
+    const float far = static_cast<float>(std::min(t_max, static_cast<double>(std::numeric_limits<float>::max())));
+    for (int i = 0; i < kPacket; ++i) {
+        // Lanes past `count` are switched off (valid 0) and carry a copy of the first ray.
+        const Eigen::Vector3d& d = dirs[i < count ? i : 0];
+        valid[i] = i < count ? -1 : 0;
+        rh.ray.org_x[i] = static_cast<float>(o.x());
+        rh.ray.org_y[i] = static_cast<float>(o.y());
+        rh.ray.org_z[i] = static_cast<float>(o.z());
+        rh.ray.dir_x[i] = static_cast<float>(d.x());
+        rh.ray.dir_y[i] = static_cast<float>(d.y());
+        rh.ray.dir_z[i] = static_cast<float>(d.z());
+        rh.ray.tnear[i] = static_cast<float>(t_min);
+        rh.ray.tfar[i] = far;
+        rh.ray.time[i] = 0;
+        rh.ray.mask[i] = 0xffffffffu;
+        rh.ray.id[i] = static_cast<unsigned>(i);
+        rh.ray.flags[i] = 0;
+        rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][i] = RTC_INVALID_GEOMETRY_ID;
+    }
+    rtcIntersect8(valid, handles_->scene, &context, &rh);
+    for (int i = 0; i < count; ++i) {
+        if (rh.hit.geomID[i] == RTC_INVALID_GEOMETRY_ID) {
+            hits[i] = IndexHit{};
+            continue;
+        }
+        const unsigned face = (rh.hit.primID[i] % 12) / 2;
+        hits[i].t = rh.ray.tfar[i];
+        hits[i].box = static_cast<int>(rh.hit.primID[i] / 12);
+        hits[i].axis = static_cast<int>(face / 2);
+        hits[i].max_side = face % 2 == 1;
+    }
+}
+
 bool RayIndex::any(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t_min, double t_max) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);

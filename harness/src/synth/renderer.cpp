@@ -1,6 +1,7 @@
 #include "synth/renderer.hpp"
 
 #include "synth/random_field.hpp"
+#include "synth/ray_index.hpp"
 
 #include "depth_registration.hpp"  // plugins/common
 
@@ -101,19 +102,28 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     tbb::parallel_for(0, H, [&](int v) {
         const Eigen::Matrix3d R = rows[static_cast<std::size_t>(v)].linear();
         const Eigen::Vector3d o = rows[static_cast<std::size_t>(v)].translation();
-        for (int u = 0; u < W; ++u) {
-            const Eigen::Vector3d dir_cam = color_rays_.dirs[static_cast<std::size_t>(v) * W + u];
-            const Eigen::Vector3d dir = R * dir_cam;
-            Hit hit;
-            Eigen::Vector3f c(0, 0, 0);
-            double z = 1e3;
-            if (scene_.intersect(o, dir, 1e-6, 1e3, hit)) {
-                const double cos_in = std::max(0.05, std::abs(hit.normal.dot(dir)));
-                c = scene_.shade(hit, dir, hit.t * pixel_angle / cos_in, fx.highlights);
-                z = hit.t * dir_cam.z();
+        // A row's rays share the origin: traced in packets (RayIndex::kPacket), shaded one by one.
+        constexpr int kRun = RayIndex::kPacket;
+        for (int u0 = 0; u0 < W; u0 += kRun) {
+            const int n = std::min(kRun, W - u0);
+            Eigen::Vector3d dirs[kRun];
+            for (int i = 0; i < n; ++i) dirs[i] = R * color_rays_.dirs[static_cast<std::size_t>(v) * W + u0 + i];
+            Hit hits[kRun];
+            bool found[kRun];
+            scene_.intersect_packet(o, dirs, n, 1e-6, 1e3, hits, found);
+            for (int i = 0; i < n; ++i) {
+                const int u = u0 + i;
+                Eigen::Vector3f c(0, 0, 0);
+                double z = 1e3;
+                if (found[i]) {
+                    const Hit& hit = hits[i];
+                    const double cos_in = std::max(0.05, std::abs(hit.normal.dot(dirs[i])));
+                    c = scene_.shade(hit, dirs[i], hit.t * pixel_angle / cos_in, fx.highlights);
+                    z = hit.t * color_rays_.dirs[static_cast<std::size_t>(v) * W + u].z();
+                }
+                linear.at<cv::Vec3f>(v, u) = cv::Vec3f(c.z(), c.y(), c.x());  // BGR
+                range.at<double>(v, u) = z;
             }
-            linear.at<cv::Vec3f>(v, u) = cv::Vec3f(c.z(), c.y(), c.x());  // BGR
-            range.at<double>(v, u) = z;
         }
     });
 
@@ -192,8 +202,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
             cv::Vec3b& px = out.color.at<cv::Vec3b>(v, u);
             for (int ch = 0; ch < 3; ++ch) {
                 const double noise =
-                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise((static_cast<uint64_t>(v) * W + u) * 3 + ch))
-                                 : 0.0;
+                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise((static_cast<uint64_t>(v) * W + u) * 3 + ch)) : 0.0;
                 // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
                 // measured on the real images, tone curve and all).
                 const double y = srgb(c[ch]);

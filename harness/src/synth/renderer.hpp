@@ -80,8 +80,10 @@ private:
         double z = 0;          // depth along the depth camera's optical axis
         double incidence = 0;  // angle between ray and surface normal, rad
     };
-    // One depth pixel's ray, with lateral jitter; false when it hits nothing.
-    bool cast_depth_ray(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const;
+    // The rays of depth pixels u0 … u0 + n − 1 of row v (n ≤ RayIndex::kPacket), with lateral jitter,
+    // traced as one packet; found[i] is false where ray i hits nothing.
+    void cast_depth_rays(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u0, int n, int v, DepthRay* out,
+                         bool* found) const;
     // Whether the return of a depth ray is lost on the surface it hit (dark, glossy, glass; and for
     // Kinect v1 with range): blobs fixed on the surface, their edges flickering from frame to frame.
     bool return_lost(const DepthStreams& random, uint64_t pixel, const DepthRay& ray) const;

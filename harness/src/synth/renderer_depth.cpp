@@ -3,6 +3,7 @@
 #include "synth/renderer.hpp"
 
 #include "synth/random_field.hpp"
+#include "synth/ray_index.hpp"
 #include "synth/smooth_field.hpp"
 
 #include "depth_registration.hpp"  // plugins/common
@@ -26,27 +27,37 @@ Renderer::DepthStreams::DepthStreams(uint64_t seed, uint64_t frame)
       flying(seed, kFlying, frame),
       flying_mix(seed, kFlyingMix, frame) {}
 
-bool Renderer::cast_depth_ray(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u, int v, DepthRay& out) const {
-    // Lateral noise: the sampling position jitters by a fraction of a pixel.
-    const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u;
-    Eigen::Vector3d dir_cam = depth_rays_.dirs[pixel];
-    if (sensor_.effects.registration_error && sensor_.principle == DepthPrinciple::StructuredLight) {
-        // The registered depth pixel (u, v) holds what the colour pixel (u − dx, v − dy) sees.
-        const double px = depth_rays_.width / 640.0;
-        dir_cam.x() -= sensor_.registration_shift_px.x() * px / sensor_.depth.fx * dir_cam.z();
-        dir_cam.y() -= sensor_.registration_shift_px.y() * px / sensor_.depth.fy * dir_cam.z();
+void Renderer::cast_depth_rays(const DepthStreams& random, const Eigen::Isometry3d& depth_pose, int u0, int n, int v, DepthRay* out,
+                               bool* found) const {
+    Eigen::Vector3d dirs_cam[RayIndex::kPacket], dirs[RayIndex::kPacket];
+    for (Eigen::Vector3d& d : dirs) d.setZero();  // lanes past n stay unused
+    Hit hits[RayIndex::kPacket];
+    for (int i = 0; i < n; ++i) {
+        const uint64_t pixel = static_cast<uint64_t>(v) * depth_rays_.width + u0 + i;
+        Eigen::Vector3d& dir_cam = dirs_cam[i];
+        dir_cam = depth_rays_.dirs[pixel];
+        if (sensor_.effects.registration_error && sensor_.principle == DepthPrinciple::StructuredLight) {
+            // The registered depth pixel (u, v) holds what the colour pixel (u − dx, v − dy) sees.
+            const double px = depth_rays_.width / 640.0;
+            dir_cam.x() -= sensor_.registration_shift_px.x() * px / sensor_.depth.fx * dir_cam.z();
+            dir_cam.y() -= sensor_.registration_shift_px.y() * px / sensor_.depth.fy * dir_cam.z();
+        }
+        if (sensor_.effects.depth_noise) {
+            // Lateral noise: the sampling position jitters by a fraction of a pixel.
+            const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
+            dir_cam.x() += lateral * gaussian(random.lateral(2 * pixel));
+            dir_cam.y() += lateral * gaussian(random.lateral(2 * pixel + 1));
+        }
+        dir_cam.normalize();
+        dirs[i] = depth_pose.linear() * dir_cam;
     }
-    if (sensor_.effects.depth_noise) {
-        const double lateral = sensor_.lateral_sigma_px / sensor_.depth.fx;
-        dir_cam.x() += lateral * gaussian(random.lateral(2 * pixel));
-        dir_cam.y() += lateral * gaussian(random.lateral(2 * pixel + 1));
+    scene_.intersect_packet(depth_pose.translation(), dirs, n, 1e-6, 1e3, hits, found);
+    for (int i = 0; i < n; ++i) {
+        if (!found[i]) continue;
+        out[i].hit = hits[i];
+        out[i].z = hits[i].t * dirs_cam[i].z();
+        out[i].incidence = std::acos(std::min(1.0, std::abs(hits[i].normal.dot(dirs[i]))));
     }
-    dir_cam.normalize();
-    const Eigen::Vector3d dir = depth_pose.linear() * dir_cam;
-    if (!scene_.intersect(depth_pose.translation(), dir, 1e-6, 1e3, out.hit)) return false;
-    out.z = out.hit.t * dir_cam.z();
-    out.incidence = std::acos(std::min(1.0, std::abs(out.hit.normal.dot(dir))));
-    return true;
 }
 
 bool Renderer::return_lost(const DepthStreams& random, uint64_t pixel, const DepthRay& ray) const {
@@ -103,11 +114,15 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
+        const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
+        DepthRay rays[RayIndex::kPacket];
+        bool found[RayIndex::kPacket];
         for (int u = 0; u < W; ++u) {
+            const int lane = u % RayIndex::kPacket;
+            if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
+            if (!found[lane]) continue;
+            const DepthRay& ray = rays[lane];
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            DepthRay ray;
-            const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
-            if (!cast_depth_ray(random, depth_pose, u, v, ray)) continue;
             const double z = ray.z;
             truth.at<float>(v, u) = static_cast<float>(z);
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
@@ -169,10 +184,14 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f
     const Eigen::Isometry3d depth_pose = f.depth_pose * sensor_.depth_in_color;
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1), noisy = cv::Mat::zeros(H, W, CV_32FC1);
     tbb::parallel_for(0, H, [&](int v) {
+        DepthRay rays[RayIndex::kPacket];
+        bool found[RayIndex::kPacket];
         for (int u = 0; u < W; ++u) {
+            const int lane = u % RayIndex::kPacket;
+            if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
+            if (!found[lane]) continue;
+            const DepthRay& ray = rays[lane];
             const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
-            DepthRay ray;
-            if (!cast_depth_ray(random, depth_pose, u, v, ray)) continue;
             const double z = ray.z, incidence = ray.incidence;
             truth.at<float>(v, u) = static_cast<float>(z);
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;

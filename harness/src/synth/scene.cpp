@@ -69,16 +69,39 @@ bool Scene::intersect(const Eigen::Vector3d& o, const Eigen::Vector3d& d, double
         for (std::size_t b = 0; b < boxes.size(); ++b) test(static_cast<int>(b));
     }
     if (best_box < 0) return false;
-    const Box& box = boxes[static_cast<std::size_t>(best_box)];
-    hit.t = best;
-    hit.point = o + best * d;
+    hit = hit_on(best_box, best_axis, best_positive_side, o, d, best);
+    return true;
+}
+
+Hit Scene::hit_on(int box_index, int axis, bool positive_side, const Eigen::Vector3d& o, const Eigen::Vector3d& d, double t) const {
+    const Box& box = boxes[static_cast<std::size_t>(box_index)];
+    Hit hit;
+    hit.t = t;
+    hit.point = o + t * d;
     hit.normal = Eigen::Vector3d::Zero();
-    hit.normal[best_axis] = d[best_axis] > 0 ? -1.0 : 1.0;
-    hit.material = box.shell ? box.material + 2 * best_axis + (best_positive_side ? 1 : 0) : box.material;
-    const int ua = best_axis == 0 ? 1 : 0, va = best_axis == 2 ? 1 : 2;
+    hit.normal[axis] = d[axis] > 0 ? -1.0 : 1.0;
+    hit.material = box.shell ? box.material + 2 * axis + (positive_side ? 1 : 0) : box.material;
+    const int ua = axis == 0 ? 1 : 0, va = axis == 2 ? 1 : 2;
     hit.u = hit.point[ua];
     hit.v = hit.point[va];
-    return true;
+    return hit;
+}
+
+void Scene::intersect_packet(const Eigen::Vector3d& o, const Eigen::Vector3d* dirs, int count, double t_min, double t_max, Hit* hits,
+                             bool* found) const {
+    if (!index_) {
+        for (int i = 0; i < count; ++i) found[i] = intersect(o, dirs[i], t_min, t_max, hits[i]);
+        return;
+    }
+    for (int start = 0; start < count; start += RayIndex::kPacket) {
+        const int n = std::min(RayIndex::kPacket, count - start);
+        IndexHit h[RayIndex::kPacket];
+        index_->nearest_packet(o, dirs + start, n, t_min, t_max, h);
+        for (int i = 0; i < n; ++i) {
+            found[start + i] = h[i].box >= 0;
+            if (found[start + i]) hits[start + i] = hit_on(h[i].box, h[i].axis, h[i].max_side, o, dirs[start + i], h[i].t);
+        }
+    }
 }
 
 bool Scene::occluded(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const {

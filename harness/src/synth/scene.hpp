@@ -49,6 +49,11 @@ struct Scene {
     // through Embree once build_index() has run (after the last change to `boxes`), else tests every
     // box (slabs; small test scenes).
     bool intersect(const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t_min, double t_max, Hit& hit) const;
+    // The nearest hits of `count` rays from one origin (a run of pixels in an image row), traced in
+    // packets of RayIndex::kPacket; found[i] says whether ray i hit. What `intersect` finds ray by ray, up to
+    // float rounding (ray_index.hpp).
+    void intersect_packet(const Eigen::Vector3d& origin, const Eigen::Vector3d* dirs, int count, double t_min, double t_max, Hit* hits,
+                          bool* found) const;
     void build_index();
     // True when anything blocks the segment from `from` towards `to` (shadow rays).
     bool occluded(const Eigen::Vector3d& from, const Eigen::Vector3d& to) const;
@@ -58,6 +63,8 @@ struct Scene {
     Eigen::Vector3f shade(const Hit& hit, const Eigen::Vector3d& view_dir, double footprint, bool highlights = true) const;
 
 private:
+    // The hit record of the face `axis` (on the side the ray meets) of box `box` at distance t.
+    Hit hit_on(int box, int axis, bool positive_side, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t) const;
     std::shared_ptr<const RayIndex> index_;  // shared by copies of the scene
 };
 
