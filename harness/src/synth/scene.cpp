@@ -117,13 +117,17 @@ Eigen::Vector3f Scene::shade(const Hit& hit, const Eigen::Vector3d& view_dir, do
     const Eigen::Vector3f a = albedo(m, hit.u, hit.v, footprint);
     // Ambient plus diffuse point lights under the ceiling (no shadows: soft office lighting).
     double light = 0.12 + m.emission, specular = 0;
+    const bool glossy = highlights && m.gloss > 0;
     for (const PointLight& l : lights) {
         const Eigen::Vector3d to = l.position - hit.point;
+        // A light behind the surface adds no diffuse light; without a highlight to compute, skip it
+        // (the normal is axis-aligned, so this sign is exactly that of the dot product below).
+        if (!glossy && hit.normal.dot(to) <= 0) continue;
         const double d2 = to.squaredNorm();
         const Eigen::Vector3d l_dir = to / std::sqrt(d2);
         const double falloff = l.power / (1.0 + 0.3 * d2);
         light += falloff * std::max(0.0, hit.normal.dot(l_dir));
-        if (highlights && m.gloss > 0) {
+        if (glossy) {
             // Blinn–Phong (Blinn 1977): the half vector between light and eye, shininess 60.
             const Eigen::Vector3d half = (l_dir - view_dir).normalized();
             specular += falloff * std::pow(std::max(0.0, hit.normal.dot(half)), 60.0);
