@@ -113,6 +113,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     };
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
+    cv::Mat lost = cv::Mat::zeros(H, W, CV_8UC1);  // 255 where the return is lost (dark, glossy, far, depth step)
     tbb::parallel_for(0, H, [&](int v) {
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
@@ -128,7 +129,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             if (z < sensor_.min_range_m || z > sensor_.max_range_m) continue;
             if (fx.depth_border && (u >= right || v < top || v >= bottom || u < sensor_.border_left_px_m * px / z)) continue;
             if (fx.glancing_dropout && ray.incidence > sensor_.glancing_limit_deg * M_PI / 180.0) continue;
-            if (return_lost(random, pixel, ray)) continue;
+            if (return_lost(random, pixel, ray)) lost.at<uint8_t>(v, u) = 255;
             const Hit& hit = ray.hit;
             // The projector's shadow: a point the pattern cannot reach has no disparity.
             if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) continue;
@@ -160,10 +161,15 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                     step = n <= 0 || std::abs(n - z) > 0.05f * z;
                 }
                 if (step && uniform(random.edge_dropout(static_cast<uint64_t>(v) * W + u)) < sensor_.edge_dropout_probability)
-                    out.depth_native.at<float>(v, u) = 0;
+                    lost.at<uint8_t>(v, u) = 255;
             }
         });
     }
+    // The returns lost by matching: a majority vote over the correlation window (a median of the mask),
+    // so that holes come in patches and the speckle of pixel-by-pixel losses is gone.
+    const int window = static_cast<int>(std::lround(sensor_.dropout_window_px * px)) | 1;  // odd
+    if (window > 1) cv::medianBlur(lost, lost, window);
+    out.depth_native.setTo(0, lost);
     // PUTK²'s 320×240 depth is rescaled to the 640×480 colour image as in the paper (nearest: no
     // invented depths); a full-resolution grid is the colour image already.
     if (out.depth_native.size() == cv::Size(sensor_.color.width, sensor_.color.height))

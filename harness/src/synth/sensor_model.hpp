@@ -95,6 +95,10 @@ struct SensorModel {
     double dropout_blob_m = 0.02;           // size of the lost-return blobs on the surface
     double far_dropout_start_m = 3.5;       // Kinect v1: dropout rises linearly from here to max_range_m
     double edge_dropout_probability = 0.5;  // Kinect v1: at a depth step over 5 % of the range
+    // Kinect v1: a disparity is matched over a correlation window, so a return is lost (dark, glossy,
+    // far, at a depth step) where most of the window's returns are: the lost-return mask is a majority
+    // vote over this window (pixels of a 640-wide image; 1: each pixel alone).
+    int dropout_window_px = 1;
     // Kinect v1's registered depth border in pixels of a 640×480 colour image (scaled with its width):
     // left f·b_IR/z (IR–colour parallax), right, top and bottom fixed.
     // Kinect v1's registration error: the depth image's content lies this far right and down of the

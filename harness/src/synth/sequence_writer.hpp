@@ -28,7 +28,8 @@ namespace vobench::synth {
 // Bumped whenever rendering changes what a seed produces: caches of older sequences are then stale.
 // 3: rays traced in Embree packets, whose hit distances can differ from single rays' in the last
 // float bit (measured: at most 0.1 % of a frame's pixels change, mostly by one grey level).
-constexpr int kGeneratorVersion = 3;
+// 4: Kinect v1 loses returns in patches of its correlation window (SensorModel::dropout_window_px).
+constexpr int kGeneratorVersion = 4;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
