@@ -55,8 +55,8 @@ SensorModel kinect1() {
     // real depth (`synth stats`): 0.75 % of fr1/rpy's missing pixels lie in holes under 50 px and 5.6 %
     // of its valid ones within 2 px of a hole (fr1/desk 0.73 %, 4.0 %); losing pixels one by one in
     // 2-cm blobs gave 4–5.6 % and 14–18.5 %, and the speckle cut dense methods off (RgbdOdometry lost
-    // 0–4 frames an office, none on the real sample). An 11-px window over 10-cm blobs gives 0.4–1.0 %
-    // and 7.4–9.7 % over ten renderings (docs/synthetic-sensors.md).
+    // 0–4 frames an office, none on the real sample). An 11-px window over 10-cm blobs gives 0.45–1.1 %
+    // and 7.1–9.0 % over ten renderings (docs/synthetic-sensors.md).
     s.dropout_window_px = 11;
     s.dropout_blob_m = 0.10;
     s.glancing_limit_deg = 75.0;
