@@ -2,6 +2,7 @@
 
 #include "metrics/association.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
 #include "synth/stamp_latency.hpp"
 #include "tum_lists.hpp"  // plugins/common
@@ -248,12 +249,24 @@ void require_registered(const std::filesystem::path& depth_path, const cv::Mat& 
                                  ", colour " + std::to_string(color.cols) + "×" + std::to_string(color.rows) + " (not registered)");
 }
 
-// The streams' stamp latencies (stamp_latency.hpp) over the first kLatencyFrames associated pairs.
+// The streams' clocks (camera_clock.hpp) and stamp latencies (stamp_latency.hpp) over the first
+// kLatencyFrames associated pairs. The latencies are measured from the clock's ticks, as the renderer
+// exposes (effect stamp_jitter); the colour scan is also run on the stamps as they are, and the ratio
+// of the two residuals says which the images follow (> 1: the clock).
 void measure_latency(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, const std::vector<tum::ListEntry>& depth,
                      const std::vector<metrics::Match>& pairs, const metrics::Trajectory& reference, const DepthRays& rays,
                      double depth_scale, Accumulator& acc) {
     constexpr std::size_t kLatencyFrames = 120;
+    std::vector<double> rgb_stamps, depth_stamps;
+    for (const auto& e : rgb) rgb_stamps.push_back(e.stamp);
+    for (const auto& e : depth) depth_stamps.push_back(e.stamp);
+    const CameraClock rgb_clock = fit_camera_clock(rgb_stamps), depth_clock = fit_camera_clock(depth_stamps);
+    if (rgb_clock.fitted)
+        acc.mean("stamps.color_jitter_ms", "colour stamps' jitter about the camera's clock, rms ms", rgb_clock.jitter_rms_s * 1e3);
+    if (depth_clock.fitted)
+        acc.mean("stamps.depth_jitter_ms", "depth stamps' jitter about the camera's clock, rms ms", depth_clock.jitter_rms_s * 1e3);
     LatencyFrames color, depth_stream;
+    std::vector<double> color_stamps;  // as recorded, for the comparison
     for (std::size_t k = 0; k < std::min(kLatencyFrames, pairs.size()); ++k) {
         const auto color_path = folder / rgb[pairs[k].first].path, depth_path = folder / depth[pairs[k].second].path;
         const cv::Mat grey = cv::imread(color_path.string(), cv::IMREAD_GRAYSCALE);
@@ -261,17 +274,32 @@ void measure_latency(const std::filesystem::path& folder, const std::vector<tum:
         const cv::Mat depth_m = read_depth_metres(depth_path, depth_scale);
         require_registered(depth_path, depth_m, grey);
         require_camera_size(depth_path, depth_m, rays.camera());
-        color.stamps.push_back(rgb[pairs[k].first].stamp);
+        color.stamps.push_back(rgb_clock.ticks[pairs[k].first]);
+        color_stamps.push_back(rgb_stamps[pairs[k].first]);
         color.grey.push_back(grey);
         color.depth_m.push_back(depth_m);
-        depth_stream.stamps.push_back(depth[pairs[k].second].stamp);
+        depth_stream.stamps.push_back(depth_clock.ticks[pairs[k].second]);
         depth_stream.depth_m.push_back(depth_m);
     }
     const LatencyEstimate c = color_latency(color, reference, rays), d = depth_latency(depth_stream, reference, rays);
     if (c.pairs > 0)
-        acc.mean("stamps.color_latency_ms", "colour exposed before its stamp, ms (best agreement with the reference)", c.latency_ms);
+        acc.mean("stamps.color_latency_ms", "colour exposed before its clock tick, ms (best agreement with the reference)", c.latency_ms);
     if (d.pairs > 0)
-        acc.mean("stamps.depth_latency_ms", "depth exposed before its stamp, ms (best agreement with the reference)", d.latency_ms);
+        acc.mean("stamps.depth_latency_ms", "depth exposed before its clock tick, ms (best agreement with the reference)", d.latency_ms);
+    if (c.pairs > 0) {
+        const ReadoutEstimate r = color_readout(color, reference, rays, c.latency_ms);
+        if (r.pairs > 0)
+            acc.mean("stamps.color_readout_ms", "colour rows read out over, ms (rolling shutter; best agreement with the reference)",
+                     r.readout_ms);
+    }
+    if (c.pairs > 0 && rgb_clock.fitted) {
+        color.stamps = color_stamps;
+        const LatencyEstimate at_stamps = color_latency(color, reference, rays);
+        if (at_stamps.pairs > 0 && c.cost_at_best > 0)
+            acc.mean("stamps.clock_evidence",
+                     "colour residual under the reference at the stamps ÷ at the clock's ticks (> 1: exposed on the clock)",
+                     at_stamps.cost_at_best / c.cost_at_best);
+    }
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -21,6 +22,19 @@ constexpr int kDepthStridePx = 8;
 constexpr int kColorStridePx = 4;
 constexpr float kMinGradient = 20.0f;  // Sobel magnitude of the blurred grey image (grey levels · 4)
 constexpr std::size_t kMinColorPoints = 200;
+constexpr int kReadoutSteps = 13;  // 0, 5, …, 60 ms
+constexpr double kReadoutStepMs = 5.0;
+
+// Between the steps: where the parabola through the minimum and its two neighbours has its vertex, in
+// steps from the minimum (0 at the scan's ends or where the three do not curve upwards).
+template <typename Step>
+double refine_minimum(const std::vector<Step>& steps, int best, int count) {
+    if (best <= 0 || best + 1 >= count) return 0.0;
+    const Step &before = steps[static_cast<std::size_t>(best - 1)], &at = steps[static_cast<std::size_t>(best)],
+               &after = steps[static_cast<std::size_t>(best + 1)];
+    const double curvature = before.total - 2.0 * at.total + after.total;
+    return before.every_gap && after.every_gap && curvature > 0 ? 0.5 * (before.total - after.total) / curvature : 0.0;
+}
 
 // A pair's cost under the relative motion `j_from_i`, NaN when the two do not overlap enough.
 using PairCost = std::function<double(std::size_t i, std::size_t j, const Eigen::Isometry3d& j_from_i)>;
@@ -67,6 +81,7 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
     });
     LatencyEstimate best;
     best.latency_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    int best_step = -1;
     for (int step = 0; step < kScanSteps; ++step) {
         const Step& s = steps[static_cast<std::size_t>(step)];
         if (!s.every_gap) continue;
@@ -75,8 +90,10 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
             best.cost_at_best = s.total;
             best.latency_ms = kScanFromMs + step * kScanStepMs;
             best.pairs = s.pairs;
+            best_step = step;
         }
     }
+    best.latency_ms += refine_minimum(steps, best_step, kScanSteps) * kScanStepMs;
     return best;
 }
 
@@ -84,6 +101,7 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
 struct ColorSamples {
     std::vector<cv::Point3f> points;
     std::vector<float> grey;
+    std::vector<int> rows;  // the image row each was seen on
 };
 
 cv::Mat blurred(const cv::Mat& grey) {
@@ -105,6 +123,7 @@ ColorSamples color_samples(const cv::Mat& blurred_grey, const cv::Mat& depth_m, 
             const Eigen::Vector3d p = rays.point(u, v, z);
             s.points.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()));
             s.grey.push_back(blurred_grey.at<float>(v, u));
+            s.rows.push_back(v);
         }
     return s;
 }
@@ -151,6 +170,104 @@ LatencyEstimate color_latency(const LatencyFrames& frames, const metrics::Trajec
         }
         return differences.size() < kMinColorPoints ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(differences).median;
     });
+}
+
+ReadoutEstimate color_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms) {
+    ReadoutEstimate best;
+    best.readout_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    if (frames.stamps.empty() || !std::isfinite(latency_ms)) return best;
+    const int rows = frames.grey.front().rows;
+    const double last_ms = (kReadoutSteps - 1) * kReadoutStepMs;
+    // The middle row is exposed at tick − latency; only frames whose every row the reference covers at
+    // the longest readout take part, so that every step sums the same pairs.
+    std::vector<bool> covered(frames.stamps.size());
+    for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
+        const double middle = frames.stamps[k] - latency_ms * 1e-3;
+        Eigen::Isometry3d unused;
+        covered[k] = frames.grey[k].rows == rows && interpolate_pose(reference, middle - 0.5 * last_ms * 1e-3, unused) &&
+                     interpolate_pose(reference, middle + 0.5 * last_ms * 1e-3, unused);
+    }
+    std::vector<cv::Mat> images;
+    std::vector<ColorSamples> samples;
+    for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
+        images.push_back(blurred(frames.grey[k]));
+        samples.push_back(color_samples(images.back(), frames.depth_m[k], rays));
+    }
+    struct Step {
+        double total = 0;
+        std::size_t pairs = 0;
+        bool every_gap = true;
+    };
+    std::vector<Step> steps(kReadoutSteps);
+    tbb::parallel_for(0, kReadoutSteps, [&](int step) {
+        const double readout_s = step * kReadoutStepMs * 1e-3;
+        // Each covered frame's world-from-camera pose for every row (rows are exposed one after another).
+        std::vector<std::vector<Eigen::Isometry3d>> row_pose(frames.stamps.size());
+        for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
+            if (!covered[k]) continue;
+            row_pose[k].resize(static_cast<std::size_t>(rows));
+            for (int v = 0; v < rows; ++v)
+                interpolate_pose(reference, frames.stamps[k] - latency_ms * 1e-3 + (static_cast<double>(v) / rows - 0.5) * readout_s,
+                                 row_pose[k][static_cast<std::size_t>(v)]);
+        }
+        const auto row_of = [&](float v) { return static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(v)), 0, rows - 1)); };
+        Step& out = steps[static_cast<std::size_t>(step)];
+        for (const int gap : kGaps) {
+            std::vector<double> per_pair;
+            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < frames.stamps.size(); ++i) {
+                const std::size_t j = i + static_cast<std::size_t>(gap);
+                if (!covered[i] || !covered[j]) continue;
+                // Each point into the world at its own row's pose, into frame j at its middle row's, and
+                // once more at the pose of the row it landed on.
+                const ColorSamples& from = samples[i];
+                std::vector<Eigen::Vector3d> world;
+                std::vector<cv::Point3f> seen;
+                std::vector<float> grey;
+                const Eigen::Isometry3d middle_inverse = row_pose[j][static_cast<std::size_t>(rows / 2)].inverse();
+                for (std::size_t k = 0; k < from.points.size(); ++k) {
+                    const Eigen::Vector3d w = row_pose[i][static_cast<std::size_t>(from.rows[k])] *
+                                              Eigen::Vector3d(from.points[k].x, from.points[k].y, from.points[k].z);
+                    const Eigen::Vector3d q = middle_inverse * w;
+                    if (q.z() <= 0.05) continue;
+                    world.push_back(w);
+                    seen.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+                    grey.push_back(from.grey[k]);
+                }
+                const auto first = rays.project(seen);
+                for (std::size_t k = 0; k < seen.size(); ++k) {
+                    const Eigen::Vector3d q = row_pose[j][row_of(first[k].y)].inverse() * world[k];
+                    seen[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
+                }
+                const auto pixels = rays.project(seen);
+                std::vector<double> differences;
+                for (std::size_t k = 0; k < pixels.size(); ++k) {
+                    double there = 0;
+                    if (bilinear(images[j], pixels[k].x, pixels[k].y, there)) differences.push_back(std::abs(there - grey[k]));
+                }
+                if (differences.size() >= kMinColorPoints) per_pair.push_back(metrics::compute_stats(differences).median);
+            }
+            if (per_pair.empty()) {
+                out.every_gap = false;
+                return;
+            }
+            out.total += metrics::compute_stats(per_pair).median;
+            out.pairs += per_pair.size();
+        }
+    });
+    int best_step = -1;
+    for (int step = 0; step < kReadoutSteps; ++step) {
+        const Step& st = steps[static_cast<std::size_t>(step)];
+        if (!st.every_gap) continue;
+        if (step == 0) best.cost_at_zero = st.total;
+        if (!(st.total >= best.cost_at_best)) {
+            best.cost_at_best = st.total;
+            best.readout_ms = step * kReadoutStepMs;
+            best.pairs = st.pairs;
+            best_step = step;
+        }
+    }
+    best.readout_ms += refine_minimum(steps, best_step, kReadoutSteps) * kReadoutStepMs;
+    return best;
 }
 
 }  // namespace vobench::synth

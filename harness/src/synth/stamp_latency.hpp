@@ -13,7 +13,8 @@
 //     its textured pixels (Sobel magnitude > 20) with valid registered depth and frame j at where
 //     those points land (bilinear), i.e. photometric consistency.
 // Each is summed over the gaps of 1, 2 and 4 frames (median over pairs per gap) and scanned over L in
-// −10…40 ms in 2 ms steps; the estimate is the scan's minimum. Checked on renderings with a known
+// −10…40 ms in 2 ms steps; the estimate is the scan's minimum, refined between the steps by the vertex
+// of the parabola through it and its neighbours. Checked on renderings with a known
 // latency (tests/synth/stamp_latency_test.cpp) and measured on TUM fr1 (docs/synthetic-sensors.md).
 #pragma once
 
@@ -47,5 +48,18 @@ LatencyEstimate depth_latency(const LatencyFrames& frames, const metrics::Trajec
 // The colour stream's latency; `frames.grey` at `frames.stamps` with `frames.depth_m` registered to them
 // (taken at their own, nearby stamps: the few pixels' motion between the two is smoothed by the blur).
 LatencyEstimate color_latency(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays);
+
+struct ReadoutEstimate {
+    double readout_ms = 0;    // the scan's minimum (NaN: no pair the reference covers)
+    double cost_at_best = 0;  // the summed medians there (grey levels)
+    double cost_at_zero = 0;  // ... and with every row exposed at once (a global shutter)
+    std::size_t pairs = 0;
+};
+
+// The colour camera's rolling-shutter readout R: row v of an image exposed at (stamp − latency) +
+// (v / rows − 1/2)·R, R scanned over 0…60 ms in 5-ms steps (refined as the latency is) with the colour
+// cost above — each point carried into the world at its row's pose and into frame j at the pose of the
+// row it lands on. `latency_ms` from color_latency.
+ReadoutEstimate color_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms);
 
 }  // namespace vobench::synth
