@@ -13,6 +13,7 @@ import csv
 import io
 import json
 import os
+import random
 import re
 import resource
 import shutil
@@ -284,6 +285,38 @@ def synth_inputs(args, w):
             r"--stamps needs --layout tum and a trajectory file")
     check("synth: no sequence is left behind by a refused --stamps run",
           not any(os.path.exists(os.path.join(d, o, "rgb.txt")) for o in ("o1", "o2", "o3", "o4")))
+    refused("a misspelt stamp_jitter", ["synth", "--effects", "-stamp_jiter", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"unknown effect 'stamp_jiter'.*stamp_jitter")
+    # --stamps off any regular clock (effect stamp_jitter fits one to each list): a stamp stalled by
+    # 15 ms, a 0.4-s pause, intervals at random. The stamps are legal, so each folder is rendered; what
+    # does not fit the clock is taken at its stamp, and synth.json says how the fit went.
+    def clock_case(name, stamps, expect):
+        f = os.path.join(d, "stamps_" + name)
+        write(os.path.join(f, "rgb.txt"), "".join(f"{t:.6f} rgb/{k}.png\n" for k, t in enumerate(stamps)))
+        write(os.path.join(f, "depth.txt"), "".join(f"{t + 0.004:.6f} depth/{k}.png\n" for k, t in enumerate(stamps)))
+        out = os.path.join(d, "clock_" + name)
+        r = run([args.vobench] + tum + [out, "--stamps", f, "--frames", "3"], timeout=300)
+        meta = json.load(open(os.path.join(out, "synth.json"))) if r.returncode == 0 else {}
+        clock = meta.get("camera_clock", {}).get("color", {})
+        check(f"synth --stamps with {name.replace('_', ' ')}: rendered, the clock fit recorded ({expect.__doc__})",
+              r.returncode == 0 and expect(clock), f"rc {r.returncode}: {r.stderr[-400:]} {clock}")
+
+    def one_off(c):
+        """fitted, one stamp off the clock"""
+        return c.get("fitted") is True and c.get("off_clock") == 1 and abs(c.get("period_s", 0) - 1 / 30) < 1e-4
+    def paused(c):
+        """fitted, the pause counted as dropped frames"""
+        return c.get("fitted") is True and c.get("off_clock") == 0 and abs(c.get("period_s", 0) - 1 / 30) < 1e-4
+    def recorded(c):
+        """whatever the fit found, recorded"""
+        return isinstance(c.get("fitted"), bool) and c.get("period_s", -1) >= 0 and c.get("off_clock", -1) >= 0
+    clock_case("a_stalled_stamp", [100.0 + k / 30 + (0.015 if k == 12 else 0) for k in range(25)], one_off)
+    clock_case("a_pause", [100.0 + k / 30 for k in range(10)] + [100.7 + k / 30 for k in range(6)], paused)
+    rng = random.Random(5)
+    random_stamps = [100.0]
+    while random_stamps[-1] < 100.8:
+        random_stamps.append(random_stamps[-1] + rng.uniform(0.010, 0.060))
+    clock_case("random_intervals", random_stamps[:-1], recorded)
     # synth stats on broken folders.
     good = os.path.join(d, "stats_good")
     r = run([args.vobench, "synth", "--frames", "3", "--layout", "tum", "--out", good], timeout=300)

@@ -3,6 +3,7 @@
 #include "synth/camera_catalog.hpp"
 #include "test_support.hpp"
 
+#include <fmt/format.h>
 #include <catch2/catch.hpp>
 
 #include <fstream>
@@ -66,6 +67,35 @@ TEST_CASE("synth stamps from a TUM folder: one frame per associated pair, depth 
     // No pair within the path: an error naming the list.
     const metrics::Trajectory elsewhere{pose_at(10.0, 0.0, 0.0), pose_at(11.0, 1.0, 0.0)};
     CHECK_THROWS_WITH(plan_from_tum_stamps(elsewhere, tmp.path(), skipped), Catch::Contains("rgb.txt") && Catch::Contains("time span"));
+}
+
+TEST_CASE("synth stamps on the camera's clock: each image at its stream's tick (minus latency), the lists' stamps kept", "[synth][plan]") {
+    test::TempDir tmp;
+    // 30 Hz ticks from 1.0 s; the colour stamps jitter ±2 ms about them, the depth stamps 12 ms later
+    // with their own jitter. Both jitters sum to zero and are uncorrelated with the frame number, so
+    // the fitted clock is the true one.
+    const double color_jitter[] = {0.002, -0.002, 0.0, 0.0, -0.002, 0.002};
+    const double depth_jitter[] = {0.001, -0.001, 0.0, 0.0, -0.001, 0.001};
+    std::string rgb = "# colour\n", depth = "# depth\n";
+    for (int k = 0; k < 6; ++k) {
+        rgb += fmt::format("{:.6f} rgb/{}.png\n", 1.0 + k / 30.0 + color_jitter[k], k);
+        depth += fmt::format("{:.6f} depth/{}.png\n", 1.012 + k / 30.0 + depth_jitter[k], k);
+    }
+    write(tmp.path() / "rgb.txt", rgb);
+    write(tmp.path() / "depth.txt", depth);
+    const metrics::Trajectory path{pose_at(0.9, 0.0, 0.0), pose_at(2.0, 1.1, 0.0)};  // x = t − 0.9
+    std::size_t skipped = 0;
+    const auto plan = plan_from_tum_stamps(path, tmp.path(), skipped, StampLatency{0.005, 0.018}, true);
+    REQUIRE(plan.size() == 6);
+    for (int k = 0; k < 6; ++k) {
+        INFO("frame " << k);
+        CHECK(plan[k].color_stamp == Approx(1.0 + k / 30.0 + color_jitter[k]));  // as recorded
+        CHECK(plan[k].color_pose.translation().x() == Approx(1.0 + k / 30.0 - 0.005 - 0.9).margin(2e-6));
+        CHECK(plan[k].depth_pose.translation().x() == Approx(1.012 + k / 30.0 - 0.018 - 0.9).margin(2e-6));
+    }
+    // Off the clock (the default), frame 1 is taken at its stamp, 2 ms early.
+    const auto at_stamps = plan_from_tum_stamps(path, tmp.path(), skipped, StampLatency{0.005, 0.018});
+    CHECK(at_stamps[1].color_pose.translation().x() == Approx(1.0 + 1 / 30.0 - 0.002 - 0.005 - 0.9).margin(2e-6));
 }
 
 TEST_CASE("stamp_offsets moves each depth image by at most 16 ms, reproducibly", "[synth][plan]") {
@@ -132,7 +162,9 @@ TEST_CASE("effects: all, none and ±name from the defaults, an unknown name list
     CHECK(defaults.rolling_shutter);
     CHECK_FALSE(defaults.stamp_offsets);
     CHECK(defaults.stamp_latency);  // only real stamps (--stamps) have a latency to model
+    CHECK(defaults.stamp_jitter);   // ... and a clock the stamps jitter about
     CHECK_FALSE(parse_effects("-stamp_latency").stamp_latency);
+    CHECK_FALSE(parse_effects("-stamp_jitter").stamp_jitter);
     const Effects some = parse_effects("-motion_blur, +stamp_offsets");
     CHECK_FALSE(some.motion_blur);
     CHECK(some.stamp_offsets);

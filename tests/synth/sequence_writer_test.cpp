@@ -1,5 +1,6 @@
 #include "synth/sequence_writer.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "synth/sensor_model.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -121,10 +122,13 @@ TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, 
     };
     const auto with = render("", "with"), without = render("-stamp_latency", "without");
     CHECK(with["effects"]["stamp_latency"] == true);
-    CHECK(with["stamp_latency_s"]["color"].get<double>() == Approx(0.008));
-    CHECK(with["stamp_latency_s"]["depth"].get<double>() == Approx(0.020));
+    CHECK(with["stamp_latency_s"]["color"].get<double>() == Approx(synth::kinect1().color_latency_s));
+    CHECK(with["stamp_latency_s"]["depth"].get<double>() == Approx(synth::kinect1().depth_latency_s));
     CHECK(without["stamp_latency_s"]["depth"].get<double>() == 0.0);
-    // The lists keep the recorded stamps; the images differ (20 ms at 1 rad/s: 1.1°, ≈ 10 px).
+    // Two stamps cannot fit a clock: they are taken as they are, and synth.json says so.
+    CHECK(with["effects"]["stamp_jitter"] == true);
+    CHECK(with["camera_clock"]["color"]["fitted"] == false);
+    // The lists keep the recorded stamps; the images differ (19 ms at 1 rad/s: 1.1°, ≈ 10 px).
     CHECK(slurp(tmp.path() / "with" / "depth.txt") == slurp(tmp.path() / "without" / "depth.txt"));
     CHECK(slurp(tmp.path() / "with" / "depth" / "100.500000.png") != slurp(tmp.path() / "without" / "depth" / "100.500000.png"));
 }

@@ -84,7 +84,7 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
     auto* c = synth.add_subcommand("fit-distortion",
                                    "Fit a Kinect v1's disparity distortion δ = a·r² + b·x + c·y px to a TUM folder's depth and reference");
     static std::string folder, validate, camera = "tum-fr1", expect;
-    static double latency_ms = 20.0, tolerance = 0.05;
+    static double latency_ms = synth::kinect1().depth_latency_s * 1e3, tolerance = 0.05;
     static synth::DistortionFitOptions options;
     c->add_option("folder", folder, "TUM-layout folder with depth.txt and groundtruth.txt (depth 5000 units per metre)")->required();
     c->add_option("--camera", camera, "The colour camera the depth is registered to (a name or a camera file)")->capture_default_str();

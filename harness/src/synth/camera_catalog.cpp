@@ -65,10 +65,10 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
     if (name == "putk2-kinect2") return {kinect2().color, 1};
     if (name == "tum-fr1") {
         // TUM fr1's Kinect: its depth's disparity offset field, measured from the real fr1/rpy frames
-        // and their reference alone (`vobench synth fit-distortion`, depth latency 20 ms;
-        // docs/synthetic-sensors.md).
+        // and their reference alone (`vobench synth fit-distortion`: depth images on the stream's clock,
+        // latency 18.9 ms; docs/synthetic-sensors.md).
         CameraSpec fr1 = tum_camera(tum::kFr1);
-        fr1.disparity_distortion_px = {-0.416, 1.065, -1.161};
+        fr1.disparity_distortion_px = {-0.389, 1.065, -0.969};
         return fr1;
     }
     if (name == "tum-fr2") return tum_camera(tum::kFr2);

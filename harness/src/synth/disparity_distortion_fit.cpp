@@ -2,6 +2,7 @@
 
 #include "metrics/statistics.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "synth/camera_clock.hpp"
 #include "synth/frame_plan.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
@@ -75,6 +76,7 @@ DepthSequence read_depth_sequence(const std::filesystem::path& folder, const Pin
         s.stamps.push_back(e.stamp);
         s.depth_m.push_back(std::move(depth));
     }
+    s.stamps = fit_camera_clock(s.stamps).ticks;  // the images were taken on the clock (camera_clock.hpp)
     s.reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
     return s;
 }

@@ -7,8 +7,9 @@
 // measured depth z_m was really z = f·b_IR / (f·b_IR / z_m − δ). The depth error grows as z²·δ / (f·b_IR)
 // — harmless at 1 m, centimetres at 3–4 m — and stays with the camera, not the scene, so consecutive
 // views of one surface disagree more the further the camera turned. The fit minimises that
-// disagreement: frame i's corrected depth, moved by the reference's motion (poses at each depth stamp
-// less the depth stream's latency, stamp_latency.hpp) onto frame j's corrected depth
+// disagreement: frame i's corrected depth, moved by the reference's motion (poses at each depth image's
+// tick on the stream's clock, camera_clock.hpp, less the stream's latency, stamp_latency.hpp) onto
+// frame j's corrected depth
 // (depth_pair_residuals, every 8th pixel), for pairs 4 and 16 frames apart starting at every second
 // frame; Gauss–Newton on (a, b, c) from zero with a forward-difference Jacobian, robust by iterative
 // reweighting (weights 1 / max(|r|, 0.5 %), residuals over 5 % dropped as occlusions).
@@ -16,6 +17,7 @@
 
 #include "metrics/pose.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/sensor_model.hpp"
 
 #include <array>
 #include <filesystem>
@@ -25,7 +27,7 @@ namespace vobench::synth {
 
 // A TUM-layout folder's depth stream in list order (consecutive frames) and its reference.
 struct DepthSequence {
-    std::vector<double> stamps;
+    std::vector<double> stamps;    // each image's tick on the clock fitted to the list's stamps (fit_camera_clock)
     std::vector<cv::Mat> depth_m;  // metres, CV_32FC1, 0 = missing, the camera's image size
     metrics::Trajectory reference;
 };
@@ -43,8 +45,8 @@ cv::Mat undo_disparity_offset(const cv::Mat& depth_m, const PinholeCamera& camer
                               double focal_baseline_px_m);
 
 struct DistortionFitOptions {
-    double depth_latency_s = 0.020;            // the depth stream's latency (synth stats --camera measures it)
-    double focal_baseline_px_m = 580 * 0.075;  // IR focal length × baseline (Khoshelham & Elberink 2012)
+    double depth_latency_s = kinect1().depth_latency_s;  // the depth stream's latency (synth stats --camera measures it)
+    double focal_baseline_px_m = 580 * 0.075;            // IR focal length × baseline (Khoshelham & Elberink 2012)
     int iterations = 14;
 };
 

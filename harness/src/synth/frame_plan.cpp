@@ -57,7 +57,7 @@ bool interpolate_pose(const metrics::Trajectory& poses, double t, Eigen::Isometr
 }
 
 std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera, const std::filesystem::path& dir, std::size_t& skipped,
-                                               const StampLatency& latency) {
+                                               const StampLatency& latency, bool on_camera_clock, StampClocks* clocks) {
     const auto rgb = tum::parse_list(read_file(dir / "rgb.txt"), (dir / "rgb.txt").string());
     const auto depth = tum::parse_list(read_file(dir / "depth.txt"), (dir / "depth.txt").string());
     std::vector<double> rgb_stamps, depth_stamps;
@@ -65,6 +65,10 @@ std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera
     for (const auto& e : depth) depth_stamps.push_back(e.stamp);
     metrics::AssociationOptions ao;  // TUM's associate.py default: 20 ms
     const auto pairs = metrics::associate(rgb_stamps, depth_stamps, ao);
+    StampClocks fitted;
+    if (on_camera_clock) fitted = {fit_camera_clock(rgb_stamps), fit_camera_clock(depth_stamps)};
+    const std::vector<double>& rgb_ticks = on_camera_clock ? fitted.color.ticks : rgb_stamps;
+    const std::vector<double>& depth_ticks = on_camera_clock ? fitted.depth.ticks : depth_stamps;
     constexpr double kBlurLookAhead = 0.01;  // seconds: the motion during the exposure, from the nearest poses
     std::vector<PlannedFrame> plan;
     skipped = 0;
@@ -72,7 +76,7 @@ std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera
         PlannedFrame f;
         f.color_stamp = rgb_stamps[m.first];
         f.depth_stamp = depth_stamps[m.second];
-        const double color_exposed = f.color_stamp - latency.color_s, depth_exposed = f.depth_stamp - latency.depth_s;
+        const double color_exposed = rgb_ticks[m.first] - latency.color_s, depth_exposed = depth_ticks[m.second] - latency.depth_s;
         if (!interpolate_pose(camera, color_exposed, f.color_pose) || !interpolate_pose(camera, depth_exposed, f.depth_pose)) {
             ++skipped;
             continue;
@@ -84,6 +88,7 @@ std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera
         }
         plan.push_back(f);
     }
+    if (clocks) *clocks = std::move(fitted);
     if (plan.empty())
         throw std::runtime_error((dir / "rgb.txt").string() + ": no colour–depth pair lies inside the trajectory's time span (" +
                                  std::to_string(camera.empty() ? 0.0 : camera.front().t) + " to " +

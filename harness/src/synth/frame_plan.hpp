@@ -6,10 +6,13 @@
 // its own stamp and the depth image at the pose at *its* stamp, so the real recording's
 // unsynchronised streams (offsets of up to ~16 ms in fr1) and its dropped frames are reproduced. A
 // recorded stamp is not the exposure, though: each image can be taken its stream's latency before its
-// stamp (effect `stamp_latency`, measured with `vobench synth stats --camera`; stamp_latency.hpp).
+// stamp (effect `stamp_latency`, measured with `vobench synth stats --camera`; stamp_latency.hpp), and
+// on the camera's regular clock rather than at the jittering stamp (effect `stamp_jitter`;
+// camera_clock.hpp).
 #pragma once
 
 #include "metrics/pose.hpp"
+#include "synth/camera_clock.hpp"
 
 #include <cstdint>
 #include <filesystem>
@@ -36,12 +39,19 @@ struct StampLatency {
 };
 
 // One frame per colour–depth pair of `tum_folder` (TUM's association, pairs closer than 20 ms), poses
-// interpolated in `camera` (position linearly, rotation by slerp) at each image's stamp minus its
-// stream's `latency`; the frame keeps the recorded stamps. Pairs outside the trajectory's time span
-// are left out and counted in `skipped`. Throws std::runtime_error naming the file when the lists
-// cannot be read or no pair lies inside the trajectory.
+// interpolated in `camera` (position linearly, rotation by slerp) at each image's stamp — or, with
+// `on_camera_clock`, its tick on the clock fitted to its stream's whole list (fit_camera_clock) —
+// minus its stream's `latency`; the frame keeps the recorded stamps. Pairs outside the trajectory's
+// time span are left out and counted in `skipped`. Throws std::runtime_error naming the file when the
+// lists cannot be read or no pair lies inside the trajectory.
+// The clocks fitted to a folder's two lists (with `on_camera_clock`; synth.json records them).
+struct StampClocks {
+    CameraClock color, depth;
+};
+
 std::vector<PlannedFrame> plan_from_tum_stamps(const metrics::Trajectory& camera, const std::filesystem::path& tum_folder,
-                                               std::size_t& skipped, const StampLatency& latency = {});
+                                               std::size_t& skipped, const StampLatency& latency = {}, bool on_camera_clock = false,
+                                               StampClocks* clocks = nullptr);
 
 // Effect `stamp_offsets` for built-in trajectories: each depth image is taken up to ±16 ms off its
 // colour image (uniform, from the seed), as the unsynchronised Kinect v1 streams of TUM's fr1 show

@@ -49,6 +49,7 @@ struct Effects {
     bool registration_error = true;       // Kinect v1: depth registered a little off the colour image
     bool stamp_offsets = false;           // built-in trajectories: depth stamps off the colour stamps
     bool stamp_latency = true;            // --stamps: each image exposed its stream's latency before its recorded stamp
+    bool stamp_jitter = true;             // --stamps: exposed on the camera's regular clock, about which the recorded stamps jitter
     bool depth_distortion = true;         // Kinect v1: the camera's measured disparity offset field (none: nothing to add)
 };
 

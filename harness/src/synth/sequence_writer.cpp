@@ -195,6 +195,11 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
     }
 }
 
+// A stream's fitted clock for synth.json (not fitted: the images were taken at their stamps).
+nlohmann::json clock_json(const CameraClock& c) {
+    return {{"fitted", c.fitted}, {"period_s", c.period_s}, {"jitter_rms_s", c.jitter_rms_s}, {"off_clock", c.off_clock}};
+}
+
 }  // namespace
 
 SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t, uint64_t)>& progress) {
@@ -213,8 +218,10 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     // Only recorded stamps lag their exposures; a built-in trajectory's stamps are the exposures.
     const StampLatency latency =
         !o.stamps.empty() && sensor.effects.stamp_latency ? StampLatency{sensor.color_latency_s, sensor.depth_latency_s} : StampLatency{};
+    StampClocks clocks;
     std::vector<PlannedFrame> plan =
-        o.stamps.empty() ? plan_every_pose(paths.camera) : plan_from_tum_stamps(paths.camera, o.stamps, skipped, latency);
+        o.stamps.empty() ? plan_every_pose(paths.camera)
+                         : plan_from_tum_stamps(paths.camera, o.stamps, skipped, latency, sensor.effects.stamp_jitter, &clocks);
     if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, paths.camera, o.seed);
     const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, plan.size()) : plan.size();
     plan.resize(count);
@@ -348,6 +355,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
                               {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
+                              {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
                               {"room_boxes", scene.boxes.size()}};
     write_json_atomic(o.out / "synth.json", meta);
     return {count, skipped, seconds};

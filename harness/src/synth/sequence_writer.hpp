@@ -29,7 +29,9 @@ namespace vobench::synth {
 // 3: rays traced in Embree packets, whose hit distances can differ from single rays' in the last
 // float bit (measured: at most 0.1 % of a frame's pixels change, mostly by one grey level).
 // 4: Kinect v1 loses returns in patches of its correlation window (SensorModel::dropout_window_px).
-constexpr int kGeneratorVersion = 4;
+// 5: with --stamps, images exposed on the camera's regular clock, not at the jittering stamps
+//    (effect stamp_jitter, camera_clock.hpp); built-in trajectories render as in 4.
+constexpr int kGeneratorVersion = 5;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
