@@ -54,15 +54,20 @@ synth::LatencyFrames rolling_frames(const synth::DepthRays& rays, double readout
 
 }  // namespace
 
-TEST_CASE("colour readout: rows exposed over 30 ms give about 30 ms back, a global shutter about 0", "[synth][stats][stamp_latency]") {
+TEST_CASE("readout: rows exposed over 30 ms give about 30 ms back, a global shutter about 0, colour and depth",
+          "[synth][stats][stamp_latency]") {
     const synth::DepthRays rays(test::small_distorted_camera());
     const auto poses = test::swinging_reference(0.5, 2.8);
     for (const double readout_ms : {30.0, 0.0}) {
-        const auto r = synth::color_readout(rolling_frames(rays, readout_ms), poses, rays, 0.0);
-        INFO("readout " << readout_ms << " ms → " << r.readout_ms << " ms (" << r.pairs << " pairs, cost " << r.cost_at_zero << " → "
-                        << r.cost_at_best << ")");
-        CHECK(std::abs(r.readout_ms - readout_ms) <= 5.0);  // the scan's step
-        CHECK(r.pairs >= 3 * 30);
+        const auto frames = rolling_frames(rays, readout_ms);
+        const auto c = synth::color_readout(frames, poses, rays, 0.0), d = synth::depth_readout(frames, poses, rays, 0.0);
+        INFO("readout " << readout_ms << " ms → colour " << c.readout_ms << " ms (" << c.pairs << " pairs, cost " << c.cost_at_zero << " → "
+                        << c.cost_at_best << "), depth " << d.readout_ms << " ms (" << d.pairs << " pairs, cost " << d.cost_at_zero << " → "
+                        << d.cost_at_best << ")");
+        CHECK(std::abs(c.readout_ms - readout_ms) <= 5.0);  // the scan's step
+        CHECK(std::abs(d.readout_ms - readout_ms) <= 5.0);
+        CHECK(c.pairs >= 3 * 30);
+        CHECK(d.pairs >= 3 * 30);
     }
 }
 

@@ -97,14 +97,53 @@ PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_
     return out;
 }
 
-double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
-                           int stride_px) {
-    const PairResiduals pair = depth_pair_residuals(depth_i, depth_j, j_from_i, rays, stride_px);
+PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat& depth_j,
+                                           const std::vector<Eigen::Isometry3d>& world_from_i,
+                                           const std::vector<Eigen::Isometry3d>& world_from_j, const DepthRays& rays, int stride_px) {
+    PairResiduals out;
+    std::vector<Eigen::Vector3d> world;
+    std::vector<cv::Point3f> moved;
+    std::vector<std::size_t> slot;
+    const Eigen::Isometry3d j_middle_from_world = world_from_j[world_from_j.size() / 2].inverse();
+    for (int v = 0; v < depth_i.rows; v += stride_px)
+        for (int u = 0; u < depth_i.cols; u += stride_px) {
+            out.relative.push_back(std::numeric_limits<double>::quiet_NaN());
+            const float z = depth_i.at<float>(v, u);
+            if (!(z > 0)) continue;
+            const Eigen::Vector3d w = world_from_i[static_cast<std::size_t>(v)] * rays.point(u, v, z);
+            const Eigen::Vector3d q = j_middle_from_world * w;
+            if (q.z() <= 0.05) continue;
+            world.push_back(w);
+            moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+            slot.push_back(out.relative.size() - 1);
+        }
+    const auto first = rays.project(moved);
+    const int last_row = static_cast<int>(world_from_j.size()) - 1;
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        const auto row = static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(first[k].y)), 0, last_row));
+        const Eigen::Vector3d q = world_from_j[row].inverse() * world[k];
+        moved[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
+    }
+    out.in_front = moved.size();
+    const auto pixels = rays.project(moved);
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        double measured = 0;
+        if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
+    }
+    return out;
+}
+
+double median_pair_residual(const PairResiduals& pair) {
     if (pair.in_front < kMinOverlap) return std::numeric_limits<double>::quiet_NaN();
     std::vector<double> residuals;
     for (const double r : pair.relative)
         if (std::abs(r) < kOcclusionResidual) residuals.push_back(std::abs(r));  // NaN compares false: left out
     return residuals.size() < kMinOverlap ? std::numeric_limits<double>::quiet_NaN() : median_of(residuals);
+}
+
+double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
+                           int stride_px) {
+    return median_pair_residual(depth_pair_residuals(depth_i, depth_j, j_from_i, rays, stride_px));
 }
 
 std::vector<cv::Point2f> DepthRays::project(const std::vector<cv::Point3f>& points) const {

@@ -70,6 +70,18 @@ struct PairResiduals {
 PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
                                    int stride_px);
 
+// As depth_pair_residuals, for images whose rows were exposed one after another (a rolling shutter):
+// row v of frame i seen from `world_from_i[v]`, of frame j from `world_from_j[v]` (one pose per image
+// row). Each point goes into the world at its row's pose and into frame j at the pose of the row it
+// lands on (found from j's middle row, then once more).
+PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat& depth_j,
+                                           const std::vector<Eigen::Isometry3d>& world_from_i,
+                                           const std::vector<Eigen::Isometry3d>& world_from_j, const DepthRays& rays, int stride_px);
+
+// The median |relative residual| of a pair's residuals (those over 5 % dropped as occlusions); NaN when
+// fewer than 500 points overlap.
+double median_pair_residual(const PairResiduals& pair);
+
 // The median |relative residual| of frame i's depth (every `stride_px`-th pixel) moved by `j_from_i`
 // onto frame j's (bilinear on a smooth 2×2 neighbourhood, residuals over 5 % dropped as occlusions);
 // NaN when the two overlap in fewer than 500 points. Depths in metres, the camera's image size.

@@ -292,6 +292,12 @@ void measure_latency(const std::filesystem::path& folder, const std::vector<tum:
             acc.mean("stamps.color_readout_ms", "colour rows read out over, ms (rolling shutter; best agreement with the reference)",
                      r.readout_ms);
     }
+    if (d.pairs > 0) {
+        const ReadoutEstimate r = depth_readout(depth_stream, reference, rays, d.latency_ms);
+        if (r.pairs > 0)
+            acc.mean("stamps.depth_readout_ms", "depth rows read out over, ms (rolling shutter; best agreement with the reference)",
+                     r.readout_ms);
+    }
     if (c.pairs > 0 && rgb_clock.fitted) {
         color.stamps = color_stamps;
         const LatencyEstimate at_stamps = color_latency(color, reference, rays);

@@ -97,6 +97,74 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
     return best;
 }
 
+// A readout scan's pair cost, given each frame's world-from-camera pose for every image row.
+using RowPoses = std::vector<Eigen::Isometry3d>;
+using RollingPairCost = std::function<double(std::size_t i, std::size_t j, const RowPoses& world_from_i, const RowPoses& world_from_j)>;
+
+// Scans the readout R: row v of frame k exposed at (stamps[k] − latency) + (v / rows − 1/2)·R. Only
+// frames whose every row the reference covers at the longest readout take part.
+ReadoutEstimate readout_scan(const std::vector<double>& stamps, int rows, const metrics::Trajectory& reference, double latency_ms,
+                             const RollingPairCost& cost) {
+    ReadoutEstimate best;
+    best.readout_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    if (stamps.empty() || rows <= 0 || !std::isfinite(latency_ms)) return best;
+    const double half_longest_s = 0.5 * (kReadoutSteps - 1) * kReadoutStepMs * 1e-3;
+    std::vector<bool> covered(stamps.size());
+    for (std::size_t k = 0; k < stamps.size(); ++k) {
+        const double middle = stamps[k] - latency_ms * 1e-3;
+        Eigen::Isometry3d unused;
+        covered[k] =
+            interpolate_pose(reference, middle - half_longest_s, unused) && interpolate_pose(reference, middle + half_longest_s, unused);
+    }
+    struct Step {
+        double total = 0;
+        std::size_t pairs = 0;
+        bool every_gap = true;
+    };
+    std::vector<Step> steps(kReadoutSteps);
+    tbb::parallel_for(0, kReadoutSteps, [&](int step) {
+        const double readout_s = step * kReadoutStepMs * 1e-3;
+        std::vector<RowPoses> row_pose(stamps.size());
+        for (std::size_t k = 0; k < stamps.size(); ++k) {
+            if (!covered[k]) continue;
+            row_pose[k].resize(static_cast<std::size_t>(rows));
+            for (int v = 0; v < rows; ++v)
+                interpolate_pose(reference, stamps[k] - latency_ms * 1e-3 + (static_cast<double>(v) / rows - 0.5) * readout_s,
+                                 row_pose[k][static_cast<std::size_t>(v)]);
+        }
+        Step& out = steps[static_cast<std::size_t>(step)];
+        for (const int gap : kGaps) {
+            std::vector<double> per_pair;
+            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < stamps.size(); ++i) {
+                const std::size_t j = i + static_cast<std::size_t>(gap);
+                if (!covered[i] || !covered[j]) continue;
+                const double c = cost(i, j, row_pose[i], row_pose[j]);
+                if (std::isfinite(c)) per_pair.push_back(c);
+            }
+            if (per_pair.empty()) {
+                out.every_gap = false;
+                return;
+            }
+            out.total += metrics::compute_stats(per_pair).median;
+            out.pairs += per_pair.size();
+        }
+    });
+    int best_step = -1;
+    for (int step = 0; step < kReadoutSteps; ++step) {
+        const Step& st = steps[static_cast<std::size_t>(step)];
+        if (!st.every_gap) continue;
+        if (step == 0) best.cost_at_zero = st.total;
+        if (!(st.total >= best.cost_at_best)) {
+            best.cost_at_best = st.total;
+            best.readout_ms = step * kReadoutStepMs;
+            best.pairs = st.pairs;
+            best_step = step;
+        }
+    }
+    best.readout_ms += refine_minimum(steps, best_step, kReadoutSteps) * kReadoutStepMs;
+    return best;
+}
+
 // A colour frame's textured pixels with depth: their points in the camera frame and blurred grey levels.
 struct ColorSamples {
     std::vector<cv::Point3f> points;
@@ -173,101 +241,56 @@ LatencyEstimate color_latency(const LatencyFrames& frames, const metrics::Trajec
 }
 
 ReadoutEstimate color_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms) {
-    ReadoutEstimate best;
-    best.readout_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
-    if (frames.stamps.empty() || !std::isfinite(latency_ms)) return best;
+    if (frames.grey.empty()) return readout_scan({}, 0, reference, latency_ms, nullptr);
     const int rows = frames.grey.front().rows;
-    const double last_ms = (kReadoutSteps - 1) * kReadoutStepMs;
-    // The middle row is exposed at tick − latency; only frames whose every row the reference covers at
-    // the longest readout take part, so that every step sums the same pairs.
-    std::vector<bool> covered(frames.stamps.size());
-    for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
-        const double middle = frames.stamps[k] - latency_ms * 1e-3;
-        Eigen::Isometry3d unused;
-        covered[k] = frames.grey[k].rows == rows && interpolate_pose(reference, middle - 0.5 * last_ms * 1e-3, unused) &&
-                     interpolate_pose(reference, middle + 0.5 * last_ms * 1e-3, unused);
-    }
     std::vector<cv::Mat> images;
     std::vector<ColorSamples> samples;
     for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
         images.push_back(blurred(frames.grey[k]));
         samples.push_back(color_samples(images.back(), frames.depth_m[k], rays));
     }
-    struct Step {
-        double total = 0;
-        std::size_t pairs = 0;
-        bool every_gap = true;
-    };
-    std::vector<Step> steps(kReadoutSteps);
-    tbb::parallel_for(0, kReadoutSteps, [&](int step) {
-        const double readout_s = step * kReadoutStepMs * 1e-3;
-        // Each covered frame's world-from-camera pose for every row (rows are exposed one after another).
-        std::vector<std::vector<Eigen::Isometry3d>> row_pose(frames.stamps.size());
-        for (std::size_t k = 0; k < frames.stamps.size(); ++k) {
-            if (!covered[k]) continue;
-            row_pose[k].resize(static_cast<std::size_t>(rows));
-            for (int v = 0; v < rows; ++v)
-                interpolate_pose(reference, frames.stamps[k] - latency_ms * 1e-3 + (static_cast<double>(v) / rows - 0.5) * readout_s,
-                                 row_pose[k][static_cast<std::size_t>(v)]);
-        }
-        const auto row_of = [&](float v) { return static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(v)), 0, rows - 1)); };
-        Step& out = steps[static_cast<std::size_t>(step)];
-        for (const int gap : kGaps) {
-            std::vector<double> per_pair;
-            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < frames.stamps.size(); ++i) {
-                const std::size_t j = i + static_cast<std::size_t>(gap);
-                if (!covered[i] || !covered[j]) continue;
-                // Each point into the world at its own row's pose, into frame j at its middle row's, and
-                // once more at the pose of the row it landed on.
-                const ColorSamples& from = samples[i];
-                std::vector<Eigen::Vector3d> world;
-                std::vector<cv::Point3f> seen;
-                std::vector<float> grey;
-                const Eigen::Isometry3d middle_inverse = row_pose[j][static_cast<std::size_t>(rows / 2)].inverse();
-                for (std::size_t k = 0; k < from.points.size(); ++k) {
-                    const Eigen::Vector3d w = row_pose[i][static_cast<std::size_t>(from.rows[k])] *
-                                              Eigen::Vector3d(from.points[k].x, from.points[k].y, from.points[k].z);
-                    const Eigen::Vector3d q = middle_inverse * w;
-                    if (q.z() <= 0.05) continue;
-                    world.push_back(w);
-                    seen.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
-                    grey.push_back(from.grey[k]);
-                }
-                const auto first = rays.project(seen);
-                for (std::size_t k = 0; k < seen.size(); ++k) {
-                    const Eigen::Vector3d q = row_pose[j][row_of(first[k].y)].inverse() * world[k];
-                    seen[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
-                }
-                const auto pixels = rays.project(seen);
-                std::vector<double> differences;
-                for (std::size_t k = 0; k < pixels.size(); ++k) {
-                    double there = 0;
-                    if (bilinear(images[j], pixels[k].x, pixels[k].y, there)) differences.push_back(std::abs(there - grey[k]));
-                }
-                if (differences.size() >= kMinColorPoints) per_pair.push_back(metrics::compute_stats(differences).median);
+    return readout_scan(
+        frames.stamps, rows, reference, latency_ms, [&](std::size_t i, std::size_t j, const RowPoses& pi, const RowPoses& pj) {
+            // Each point into the world at its own row's pose, into frame j at its middle row's, and once
+            // more at the pose of the row it landed on.
+            const ColorSamples& from = samples[i];
+            std::vector<Eigen::Vector3d> world;
+            std::vector<cv::Point3f> seen;
+            std::vector<float> grey;
+            const Eigen::Isometry3d j_middle_from_world = pj[pj.size() / 2].inverse();
+            for (std::size_t k = 0; k < from.points.size(); ++k) {
+                const Eigen::Vector3d w =
+                    pi[static_cast<std::size_t>(from.rows[k])] * Eigen::Vector3d(from.points[k].x, from.points[k].y, from.points[k].z);
+                const Eigen::Vector3d q = j_middle_from_world * w;
+                if (q.z() <= 0.05) continue;
+                world.push_back(w);
+                seen.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
+                grey.push_back(from.grey[k]);
             }
-            if (per_pair.empty()) {
-                out.every_gap = false;
-                return;
+            const auto first = rays.project(seen);
+            for (std::size_t k = 0; k < seen.size(); ++k) {
+                const auto row = static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(first[k].y)), 0, rows - 1));
+                const Eigen::Vector3d q = pj[row].inverse() * world[k];
+                seen[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
             }
-            out.total += metrics::compute_stats(per_pair).median;
-            out.pairs += per_pair.size();
-        }
-    });
-    int best_step = -1;
-    for (int step = 0; step < kReadoutSteps; ++step) {
-        const Step& st = steps[static_cast<std::size_t>(step)];
-        if (!st.every_gap) continue;
-        if (step == 0) best.cost_at_zero = st.total;
-        if (!(st.total >= best.cost_at_best)) {
-            best.cost_at_best = st.total;
-            best.readout_ms = step * kReadoutStepMs;
-            best.pairs = st.pairs;
-            best_step = step;
-        }
-    }
-    best.readout_ms += refine_minimum(steps, best_step, kReadoutSteps) * kReadoutStepMs;
-    return best;
+            const auto pixels = rays.project(seen);
+            std::vector<double> differences;
+            for (std::size_t k = 0; k < pixels.size(); ++k) {
+                double there = 0;
+                if (bilinear(images[j], pixels[k].x, pixels[k].y, there)) differences.push_back(std::abs(there - grey[k]));
+            }
+            return differences.size() < kMinColorPoints ? std::numeric_limits<double>::quiet_NaN()
+                                                        : metrics::compute_stats(differences).median;
+        });
+}
+
+ReadoutEstimate depth_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms) {
+    const int rows = frames.depth_m.empty() ? 0 : frames.depth_m.front().rows;
+    return readout_scan(
+        frames.stamps, rows, reference, latency_ms, [&](std::size_t i, std::size_t j, const RowPoses& pi, const RowPoses& pj) {
+            return 100.0 *
+                   median_pair_residual(depth_pair_residuals_rolling(frames.depth_m[i], frames.depth_m[j], pi, pj, rays, kDepthStridePx));
+        });
 }
 
 }  // namespace vobench::synth

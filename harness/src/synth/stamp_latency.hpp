@@ -62,4 +62,8 @@ struct ReadoutEstimate {
 // row it lands on. `latency_ms` from color_latency.
 ReadoutEstimate color_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms);
 
+// The depth (IR) camera's readout, the same way with the depth residual (depth_pair_residuals_rolling);
+// `latency_ms` from depth_latency.
+ReadoutEstimate depth_readout(const LatencyFrames& frames, const metrics::Trajectory& reference, const DepthRays& rays, double latency_ms);
+
 }  // namespace vobench::synth
