@@ -102,7 +102,6 @@ PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat
                                            const std::vector<Eigen::Isometry3d>& world_from_j, const DepthRays& rays, int stride_px) {
     PairResiduals out;
     std::vector<Eigen::Vector3d> world;
-    std::vector<cv::Point3f> moved;
     std::vector<std::size_t> slot;
     const Eigen::Isometry3d j_middle_from_world = world_from_j[world_from_j.size() / 2].inverse();
     for (int v = 0; v < depth_i.rows; v += stride_px)
@@ -111,19 +110,11 @@ PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat
             const float z = depth_i.at<float>(v, u);
             if (!(z > 0)) continue;
             const Eigen::Vector3d w = world_from_i[static_cast<std::size_t>(v)] * rays.point(u, v, z);
-            const Eigen::Vector3d q = j_middle_from_world * w;
-            if (q.z() <= 0.05) continue;
+            if ((j_middle_from_world * w).z() <= 0.05) continue;
             world.push_back(w);
-            moved.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
             slot.push_back(out.relative.size() - 1);
         }
-    const auto first = rays.project(moved);
-    const int last_row = static_cast<int>(world_from_j.size()) - 1;
-    for (std::size_t k = 0; k < moved.size(); ++k) {
-        const auto row = static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(first[k].y)), 0, last_row));
-        const Eigen::Vector3d q = world_from_j[row].inverse() * world[k];
-        moved[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
-    }
+    const std::vector<cv::Point3f> moved = into_rolling_camera(world, world_from_j, rays);
     out.in_front = moved.size();
     const auto pixels = rays.project(moved);
     for (std::size_t k = 0; k < moved.size(); ++k) {
@@ -131,6 +122,24 @@ PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat
         if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
     }
     return out;
+}
+
+std::vector<cv::Point3f> into_rolling_camera(const std::vector<Eigen::Vector3d>& world,
+                                             const std::vector<Eigen::Isometry3d>& world_from_camera, const DepthRays& rays) {
+    const auto to_point = [](const Eigen::Vector3d& q) {
+        return cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
+    };
+    const Eigen::Isometry3d middle_from_world = world_from_camera[world_from_camera.size() / 2].inverse();
+    std::vector<cv::Point3f> seen;
+    seen.reserve(world.size());
+    for (const Eigen::Vector3d& w : world) seen.push_back(to_point(middle_from_world * w));
+    const auto first = rays.project(seen);
+    const int last_row = static_cast<int>(world_from_camera.size()) - 1;
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+        const auto row = static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(first[k].y)), 0, last_row));
+        seen[k] = to_point(world_from_camera[row].inverse() * world[k]);
+    }
+    return seen;
 }
 
 double median_pair_residual(const PairResiduals& pair) {

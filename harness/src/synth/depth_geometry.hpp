@@ -70,6 +70,12 @@ struct PairResiduals {
 PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
                                    int stride_px);
 
+// World points as a rolling-shutter camera sees them: each in the camera frame of the image row it
+// lands on (`world_from_camera` has one pose per row; the row is found from the middle row's pose,
+// then the point is placed once more). Points that land behind the camera get z = 0.05 m.
+std::vector<cv::Point3f> into_rolling_camera(const std::vector<Eigen::Vector3d>& world,
+                                             const std::vector<Eigen::Isometry3d>& world_from_camera, const DepthRays& rays);
+
 // As depth_pair_residuals, for images whose rows were exposed one after another (a rolling shutter):
 // row v of frame i seen from `world_from_i[v]`, of frame j from `world_from_j[v]` (one pose per image
 // row). Each point goes into the world at its row's pose and into frame j at the pose of the row it

@@ -249,13 +249,13 @@ void require_registered(const std::filesystem::path& depth_path, const cv::Mat& 
                                  ", colour " + std::to_string(color.cols) + "×" + std::to_string(color.rows) + " (not registered)");
 }
 
-// The streams' clocks (camera_clock.hpp) and stamp latencies (stamp_latency.hpp) over the first
-// kLatencyFrames associated pairs. The latencies are measured from the clock's ticks, as the renderer
+// The streams' clocks (camera_clock.hpp), stamp latencies and readouts (stamp_latency.hpp) over the
+// first kLatencyFrames associated pairs. The latencies are measured from the clock's ticks, as the renderer
 // exposes (effect stamp_jitter); the colour scan is also run on the stamps as they are, and the ratio
 // of the two residuals says which the images follow (> 1: the clock).
-void measure_latency(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, const std::vector<tum::ListEntry>& depth,
-                     const std::vector<metrics::Match>& pairs, const metrics::Trajectory& reference, const DepthRays& rays,
-                     double depth_scale, Accumulator& acc) {
+void measure_timing(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, const std::vector<tum::ListEntry>& depth,
+                    const std::vector<metrics::Match>& pairs, const metrics::Trajectory& reference, const DepthRays& rays,
+                    double depth_scale, Accumulator& acc) {
     constexpr std::size_t kLatencyFrames = 120;
     std::vector<double> rgb_stamps, depth_stamps;
     for (const auto& e : rgb) rgb_stamps.push_back(e.stamp);
@@ -365,7 +365,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         std::vector<std::filesystem::path> depth_paths;
         for (const auto& e : depth) depth_paths.push_back(folder / e.path);
         const auto reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
-        measure_latency(folder, rgb, depth, pairs, reference, *rays, depth_scale, acc);
+        measure_timing(folder, rgb, depth, pairs, reference, *rays, depth_scale, acc);
         for (const auto& g : reference_consistency(depth_stamps, depth_paths, reference, *rays, {1, 4, 16}, max_frames, depth_scale))
             if (g.pairs > 0)
                 acc.mean(fmt::format("reference.depth_residual_pct.gap_{}", g.gap),

@@ -251,28 +251,19 @@ ReadoutEstimate color_readout(const LatencyFrames& frames, const metrics::Trajec
     }
     return readout_scan(
         frames.stamps, rows, reference, latency_ms, [&](std::size_t i, std::size_t j, const RowPoses& pi, const RowPoses& pj) {
-            // Each point into the world at its own row's pose, into frame j at its middle row's, and once
-            // more at the pose of the row it landed on.
+            // Each point into the world at its own row's pose, then into frame j as its rolling shutter sees it.
             const ColorSamples& from = samples[i];
             std::vector<Eigen::Vector3d> world;
-            std::vector<cv::Point3f> seen;
             std::vector<float> grey;
             const Eigen::Isometry3d j_middle_from_world = pj[pj.size() / 2].inverse();
             for (std::size_t k = 0; k < from.points.size(); ++k) {
                 const Eigen::Vector3d w =
                     pi[static_cast<std::size_t>(from.rows[k])] * Eigen::Vector3d(from.points[k].x, from.points[k].y, from.points[k].z);
-                const Eigen::Vector3d q = j_middle_from_world * w;
-                if (q.z() <= 0.05) continue;
+                if ((j_middle_from_world * w).z() <= 0.05) continue;
                 world.push_back(w);
-                seen.emplace_back(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(q.z()));
                 grey.push_back(from.grey[k]);
             }
-            const auto first = rays.project(seen);
-            for (std::size_t k = 0; k < seen.size(); ++k) {
-                const auto row = static_cast<std::size_t>(std::clamp(static_cast<int>(std::lround(first[k].y)), 0, rows - 1));
-                const Eigen::Vector3d q = pj[row].inverse() * world[k];
-                seen[k] = cv::Point3f(static_cast<float>(q.x()), static_cast<float>(q.y()), static_cast<float>(std::max(q.z(), 0.05)));
-            }
+            const std::vector<cv::Point3f> seen = into_rolling_camera(world, pj, rays);
             const auto pixels = rays.project(seen);
             std::vector<double> differences;
             for (std::size_t k = 0; k < pixels.size(); ++k) {
