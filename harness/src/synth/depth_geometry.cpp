@@ -73,6 +73,21 @@ DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     for (const Eigen::Vector3d& d : map.dirs) rays_.push_back(d / d.z());
 }
 
+namespace {
+
+// Each point of `moved` (frame j's camera frame) against frame j's depth where it lands: its relative
+// residual into out.relative[slot[k]].
+void compare_depth(const cv::Mat& depth_j, const std::vector<cv::Point3f>& moved, const std::vector<std::size_t>& slot,
+                   const DepthRays& rays, PairResiduals& out) {
+    const auto pixels = rays.project(moved);
+    for (std::size_t k = 0; k < moved.size(); ++k) {
+        double measured = 0;
+        if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
+    }
+}
+
+}  // namespace
+
 PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
                                    int stride_px) {
     PairResiduals out;
@@ -89,11 +104,7 @@ PairResiduals depth_pair_residuals(const cv::Mat& depth_i, const cv::Mat& depth_
             slot.push_back(out.relative.size() - 1);
         }
     out.in_front = moved.size();
-    const auto pixels = rays.project(moved);
-    for (std::size_t k = 0; k < moved.size(); ++k) {
-        double measured = 0;
-        if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
-    }
+    compare_depth(depth_j, moved, slot, rays, out);
     return out;
 }
 
@@ -116,11 +127,7 @@ PairResiduals depth_pair_residuals_rolling(const cv::Mat& depth_i, const cv::Mat
         }
     const std::vector<cv::Point3f> moved = into_rolling_camera(world, world_from_j, rays);
     out.in_front = moved.size();
-    const auto pixels = rays.project(moved);
-    for (std::size_t k = 0; k < moved.size(); ++k) {
-        double measured = 0;
-        if (smooth_depth(depth_j, pixels[k].x, pixels[k].y, measured)) out.relative[slot[k]] = (measured - moved[k].z) / moved[k].z;
-    }
+    compare_depth(depth_j, moved, slot, rays, out);
     return out;
 }
 

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <vector>
 
 namespace vobench::synth {
@@ -25,15 +26,69 @@ constexpr std::size_t kMinColorPoints = 200;
 constexpr int kReadoutSteps = 13;  // 0, 5, …, 60 ms
 constexpr double kReadoutStepMs = 5.0;
 
-// Between the steps: where the parabola through the minimum and its two neighbours has its vertex, in
-// steps from the minimum (0 at the scan's ends or where the three do not curve upwards).
-template <typename Step>
-double refine_minimum(const std::vector<Step>& steps, int best, int count) {
-    if (best <= 0 || best + 1 >= count) return 0.0;
-    const Step &before = steps[static_cast<std::size_t>(best - 1)], &at = steps[static_cast<std::size_t>(best)],
-               &after = steps[static_cast<std::size_t>(best + 1)];
-    const double curvature = before.total - 2.0 * at.total + after.total;
-    return before.every_gap && after.every_gap && curvature > 0 ? 0.5 * (before.total - after.total) / curvature : 0.0;
+struct Step {
+    double total = 0;       // the per-gap medians, summed
+    std::size_t pairs = 0;  // pairs that took part
+    bool every_gap = true;  // false: some gap had no pair (the step does not count)
+};
+
+// A scan step's cost of the pair (i, j), NaN when the two do not overlap enough.
+using StepPairCost = std::function<double(std::size_t i, std::size_t j)>;
+
+// Costs the `count` steps of a scan in parallel, `at_step(step)` giving a step's pair cost: per gap the
+// median over the pairs (i, i + gap) whose frames are both `covered`, summed over the gaps.
+std::vector<Step> cost_steps(int count, const std::vector<bool>& covered, const std::function<StepPairCost(int)>& at_step) {
+    std::vector<Step> steps(static_cast<std::size_t>(count));
+    tbb::parallel_for(0, count, [&](int step) {
+        const StepPairCost cost = at_step(step);
+        Step& out = steps[static_cast<std::size_t>(step)];
+        for (const int gap : kGaps) {
+            std::vector<double> per_pair;
+            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < covered.size(); ++i) {
+                const std::size_t j = i + static_cast<std::size_t>(gap);
+                if (!covered[i] || !covered[j]) continue;
+                const double c = cost(i, j);
+                if (std::isfinite(c)) per_pair.push_back(c);
+            }
+            if (per_pair.empty()) {
+                out.every_gap = false;
+                return;
+            }
+            out.total += metrics::compute_stats(per_pair).median;
+            out.pairs += per_pair.size();
+        }
+    });
+    return steps;
+}
+
+struct Choice {
+    double value = std::numeric_limits<double>::quiet_NaN();  // first + step · size at the minimum, refined
+    double cost_at_best = std::numeric_limits<double>::quiet_NaN(), cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    std::size_t pairs = 0;
+};
+
+// The cheapest step in step order (the same choice, ties included, as a serial scan), refined between
+// the steps by the vertex of the parabola through it and its two neighbours; `zero_step` is the step
+// whose cost is reported as cost_at_zero.
+Choice choose(const std::vector<Step>& steps, double first, double size, int zero_step) {
+    Choice best;
+    int best_step = -1;
+    for (std::size_t k = 0; k < steps.size(); ++k) {
+        if (!steps[k].every_gap) continue;
+        if (static_cast<int>(k) == zero_step) best.cost_at_zero = steps[k].total;
+        if (!(steps[k].total >= best.cost_at_best)) {  // also when cost_at_best is still NaN
+            best.cost_at_best = steps[k].total;
+            best.value = first + static_cast<double>(k) * size;
+            best.pairs = steps[k].pairs;
+            best_step = static_cast<int>(k);
+        }
+    }
+    if (best_step > 0 && best_step + 1 < static_cast<int>(steps.size())) {
+        const Step &before = steps[static_cast<std::size_t>(best_step - 1)], &after = steps[static_cast<std::size_t>(best_step + 1)];
+        const double curvature = before.total - 2.0 * best.cost_at_best + after.total;
+        if (before.every_gap && after.every_gap && curvature > 0) best.value += size * 0.5 * (before.total - after.total) / curvature;
+    }
+    return best;
 }
 
 // A pair's cost under the relative motion `j_from_i`, NaN when the two do not overlap enough.
@@ -49,52 +104,17 @@ LatencyEstimate scan(const std::vector<double>& stamps, const metrics::Trajector
         covered[k] = interpolate_pose(reference, stamps[k] - kScanFromMs * 1e-3, unused) &&
                      interpolate_pose(reference, stamps[k] - last_ms * 1e-3, unused);
     }
-    // The steps are independent: cost them in parallel, then choose in step order (the same choice,
-    // ties included, as a serial scan).
-    struct Step {
-        double total = 0;
-        std::size_t pairs = 0;
-        bool every_gap = true;
-    };
-    std::vector<Step> steps(kScanSteps);
-    tbb::parallel_for(0, kScanSteps, [&](int step) {
+    const auto steps = cost_steps(kScanSteps, covered, [&](int step) -> StepPairCost {
         const double ms = kScanFromMs + step * kScanStepMs;
-        Step& out = steps[static_cast<std::size_t>(step)];
-        for (const int gap : kGaps) {
-            std::vector<double> per_pair;
-            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < stamps.size(); ++i) {
-                const std::size_t j = i + static_cast<std::size_t>(gap);
-                if (!covered[i] || !covered[j]) continue;
-                Eigen::Isometry3d pose_i, pose_j;
-                interpolate_pose(reference, stamps[i] - ms * 1e-3, pose_i);
-                interpolate_pose(reference, stamps[j] - ms * 1e-3, pose_j);
-                const double c = cost(i, j, pose_j.inverse() * pose_i);
-                if (std::isfinite(c)) per_pair.push_back(c);
-            }
-            if (per_pair.empty()) {
-                out.every_gap = false;
-                return;
-            }
-            out.total += metrics::compute_stats(per_pair).median;
-            out.pairs += per_pair.size();
-        }
+        return [&, ms](std::size_t i, std::size_t j) {
+            Eigen::Isometry3d pose_i, pose_j;
+            interpolate_pose(reference, stamps[i] - ms * 1e-3, pose_i);
+            interpolate_pose(reference, stamps[j] - ms * 1e-3, pose_j);
+            return cost(i, j, pose_j.inverse() * pose_i);
+        };
     });
-    LatencyEstimate best;
-    best.latency_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
-    int best_step = -1;
-    for (int step = 0; step < kScanSteps; ++step) {
-        const Step& s = steps[static_cast<std::size_t>(step)];
-        if (!s.every_gap) continue;
-        if (step * kScanStepMs == -kScanFromMs) best.cost_at_zero = s.total;
-        if (!(s.total >= best.cost_at_best)) {  // also when cost_at_best is still NaN
-            best.cost_at_best = s.total;
-            best.latency_ms = kScanFromMs + step * kScanStepMs;
-            best.pairs = s.pairs;
-            best_step = step;
-        }
-    }
-    best.latency_ms += refine_minimum(steps, best_step, kScanSteps) * kScanStepMs;
-    return best;
+    const Choice c = choose(steps, kScanFromMs, kScanStepMs, static_cast<int>(-kScanFromMs / kScanStepMs));
+    return {c.value, c.cost_at_best, c.cost_at_zero, c.pairs};
 }
 
 // A readout scan's pair cost, given each frame's world-from-camera pose for every image row.
@@ -105,9 +125,9 @@ using RollingPairCost = std::function<double(std::size_t i, std::size_t j, const
 // frames whose every row the reference covers at the longest readout take part.
 ReadoutEstimate readout_scan(const std::vector<double>& stamps, int rows, const metrics::Trajectory& reference, double latency_ms,
                              const RollingPairCost& cost) {
-    ReadoutEstimate best;
-    best.readout_ms = best.cost_at_best = best.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
-    if (stamps.empty() || rows <= 0 || !std::isfinite(latency_ms)) return best;
+    ReadoutEstimate none;
+    none.readout_ms = none.cost_at_best = none.cost_at_zero = std::numeric_limits<double>::quiet_NaN();
+    if (stamps.empty() || rows <= 0 || !std::isfinite(latency_ms)) return none;
     const double half_longest_s = 0.5 * (kReadoutSteps - 1) * kReadoutStepMs * 1e-3;
     std::vector<bool> covered(stamps.size());
     for (std::size_t k = 0; k < stamps.size(); ++k) {
@@ -116,53 +136,21 @@ ReadoutEstimate readout_scan(const std::vector<double>& stamps, int rows, const 
         covered[k] =
             interpolate_pose(reference, middle - half_longest_s, unused) && interpolate_pose(reference, middle + half_longest_s, unused);
     }
-    struct Step {
-        double total = 0;
-        std::size_t pairs = 0;
-        bool every_gap = true;
-    };
-    std::vector<Step> steps(kReadoutSteps);
-    tbb::parallel_for(0, kReadoutSteps, [&](int step) {
+    const auto steps = cost_steps(kReadoutSteps, covered, [&](int step) -> StepPairCost {
         const double readout_s = step * kReadoutStepMs * 1e-3;
-        std::vector<RowPoses> row_pose(stamps.size());
+        auto row_pose = std::make_shared<std::vector<RowPoses>>(stamps.size());  // each covered frame's pose of every row
         for (std::size_t k = 0; k < stamps.size(); ++k) {
             if (!covered[k]) continue;
-            row_pose[k].resize(static_cast<std::size_t>(rows));
+            RowPoses& poses = (*row_pose)[k];
+            poses.resize(static_cast<std::size_t>(rows));
             for (int v = 0; v < rows; ++v)
                 interpolate_pose(reference, stamps[k] - latency_ms * 1e-3 + (static_cast<double>(v) / rows - 0.5) * readout_s,
-                                 row_pose[k][static_cast<std::size_t>(v)]);
+                                 poses[static_cast<std::size_t>(v)]);
         }
-        Step& out = steps[static_cast<std::size_t>(step)];
-        for (const int gap : kGaps) {
-            std::vector<double> per_pair;
-            for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < stamps.size(); ++i) {
-                const std::size_t j = i + static_cast<std::size_t>(gap);
-                if (!covered[i] || !covered[j]) continue;
-                const double c = cost(i, j, row_pose[i], row_pose[j]);
-                if (std::isfinite(c)) per_pair.push_back(c);
-            }
-            if (per_pair.empty()) {
-                out.every_gap = false;
-                return;
-            }
-            out.total += metrics::compute_stats(per_pair).median;
-            out.pairs += per_pair.size();
-        }
+        return [&cost, row_pose](std::size_t i, std::size_t j) { return cost(i, j, (*row_pose)[i], (*row_pose)[j]); };
     });
-    int best_step = -1;
-    for (int step = 0; step < kReadoutSteps; ++step) {
-        const Step& st = steps[static_cast<std::size_t>(step)];
-        if (!st.every_gap) continue;
-        if (step == 0) best.cost_at_zero = st.total;
-        if (!(st.total >= best.cost_at_best)) {
-            best.cost_at_best = st.total;
-            best.readout_ms = step * kReadoutStepMs;
-            best.pairs = st.pairs;
-            best_step = step;
-        }
-    }
-    best.readout_ms += refine_minimum(steps, best_step, kReadoutSteps) * kReadoutStepMs;
-    return best;
+    const Choice c = choose(steps, 0.0, kReadoutStepMs, 0);
+    return {c.value, c.cost_at_best, c.cost_at_zero, c.pairs};
 }
 
 // A colour frame's textured pixels with depth: their points in the camera frame and blurred grey levels.
