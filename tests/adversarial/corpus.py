@@ -401,6 +401,25 @@ def synth_inputs(args, w):
             ["synth", "fit-distortion", os.path.join(d, "stats_gt_elsewhere"), "--camera", "putk2-kinect1"], r"covers no pair")
     refused("fit-distortion with an --expect that is not three numbers",
             ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "1,2;rm -rf /"], r"not three numbers")
+    # synth undo-distortion writes a corrected copy: never over a folder with contents, never outside
+    # its output (a list naming ../ or an absolute path), never with a field that is not three numbers.
+    refused("undo-distortion into the folder it reads", ["synth", "undo-distortion", ten, "--out", ten, "--field", "0,1,0"],
+            r"not an empty folder")
+    refused("undo-distortion with a --field that is not three finite numbers",
+            ["synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_nan"), "--field", "0,nan,1"], r"not three finite numbers")
+    refused("undo-distortion with a camera that has no measured field and no --field",
+            ["synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_nofield"), "--camera", "putk2-kinect1"], r"no measured disparity")
+    b = os.path.join(d, "undo_escape")
+    shutil.copytree(ten, b)
+    write(os.path.join(b, "depth.txt"), "1.0 ../../../escaped.png\n")
+    refused("undo-distortion on a depth.txt naming a path outside the folder",
+            ["synth", "undo-distortion", b, "--out", os.path.join(d, "undo_escape_out"), "--field", "0,1,0", "--camera", "putk2-kinect1"],
+            r"depth\.txt: entry 1 .*not a path inside")
+    check("undo-distortion: a refused list writes nothing", not os.path.exists(os.path.join(d, "undo_escape_out")), "")
+    r = run([args.vobench, "synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_ok"), "--field", "0,1,0",
+             "--camera", "putk2-kinect1"], timeout=120)
+    check("undo-distortion: a healthy folder is copied with every depth image", r.returncode == 0 and
+          len(os.listdir(os.path.join(d, "undo_ok", "depth"))) == len(os.listdir(os.path.join(ten, "depth"))), r.stderr[-500:])
 
 
 def plot_inputs(args, w):

@@ -102,3 +102,61 @@ TEST_CASE("fit-distortion: a folder that cannot be read is an error naming the f
     CHECK(one.depth_m.size() == 1);
     CHECK_THROWS_WITH(synth::fit_disparity_distortion(one, synth::DepthRays(camera), {}), Catch::Contains("no pair"));
 }
+
+TEST_CASE("undo-distortion: a corrected copy of a folder holds the true depth, the rest unchanged", "[synth][stats][distortion]") {
+    test::TempDir tmp;
+    const auto camera = test::small_distorted_camera();
+    const synth::DepthRays rays(camera);
+    const synth::DisparityOffset delta{-0.6, 0.9, -0.4};
+    const auto in = tmp.path() / "in", out = tmp.path() / "out";
+    std::filesystem::create_directories(in / "depth");
+    std::filesystem::create_directories(in / "rgb");
+    cv::Mat truth = test::box_room_view(rays, test::swinging_pose(1.0)).depth;
+    truth.at<float>(5, 7) = 0;  // a hole stays a hole
+    cv::Mat units;
+    distorted(truth, camera, delta).convertTo(units, CV_16UC1, 5000.0);
+    cv::imwrite((in / "depth" / "1.png").string(), units);
+    cv::imwrite((in / "rgb" / "1.png").string(), cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(10, 20, 30)));
+    std::ofstream(in / "depth.txt") << "# depth\n1.0 depth/1.png\n";
+    std::ofstream(in / "rgb.txt") << "# rgb\n1.0 rgb/1.png\n";
+    std::ofstream(in / "groundtruth.txt") << "1.0 0 0 0 0 0 0 1\n";
+
+    CHECK(synth::write_corrected_folder(in, out, camera, delta, kFocalBaseline, 5000.0) == 1);
+    const cv::Mat back = synth::read_depth_metres(out / "depth" / "1.png", 5000.0);
+    double worst = 0;
+    for (int v = 0; v < truth.rows; ++v)
+        for (int u = 0; u < truth.cols; ++u) worst = std::max(worst, std::abs(double(back.at<float>(v, u)) - truth.at<float>(v, u)));
+    CHECK(worst < 0.6 / 5000.0 + 1e-4);  // the 0.2-mm units of the format, twice rounded, and float arithmetic
+    CHECK(back.at<float>(5, 7) == 0.0f);
+    CHECK(cv::norm(cv::imread((out / "rgb" / "1.png").string()), cv::imread((in / "rgb" / "1.png").string()), cv::NORM_INF) == 0);
+    for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt"}) CHECK(std::filesystem::exists(out / name));
+    // Never over an existing folder's contents (the real data it came from, say).
+    CHECK_THROWS_WITH(synth::write_corrected_folder(in, in, camera, delta, kFocalBaseline, 5000.0), Catch::Contains("not an empty folder"));
+    CHECK_THROWS_WITH(synth::write_corrected_folder(in, out, camera, delta, kFocalBaseline, 5000.0),
+                      Catch::Contains("not an empty folder"));
+}
+
+TEST_CASE("undo-distortion: a list naming a path outside the folder is refused before anything is written",
+          "[synth][stats][distortion][corpus]") {
+    test::TempDir tmp;
+    const auto camera = test::small_distorted_camera();
+    const auto in = tmp.path() / "in";
+    std::filesystem::create_directories(in);
+    for (const std::string bad : {"../elsewhere.png", "/tmp/absolute.png", "depth/../../up.png"}) {
+        const auto out = tmp.path() / "out";
+        std::ofstream(in / "depth.txt") << "1.0 " << bad << "\n";
+        CHECK_THROWS_WITH(synth::write_corrected_folder(in, out, camera, {0, 0.5, 0}, kFocalBaseline, 5000.0),
+                          Catch::Contains("depth.txt") && Catch::Contains("entry 1") && Catch::Contains("not a path inside"));
+        CHECK_FALSE(std::filesystem::exists(out));
+    }
+    std::ofstream(in / "depth.txt") << "1.0 depth/1.png\n";
+    std::ofstream(in / "rgb.txt") << "1.0 rgb/1.png\n2.0 ../../x.png\n";
+    CHECK_THROWS_WITH(synth::write_corrected_folder(in, tmp.path() / "out", camera, {0, 0.5, 0}, kFocalBaseline, 5000.0),
+                      Catch::Contains("rgb.txt") && Catch::Contains("entry 2"));
+    // A listed depth image that is missing is named.
+    std::ofstream(in / "rgb.txt") << "1.0 rgb/1.png\n";
+    std::filesystem::create_directories(in / "rgb");
+    cv::imwrite((in / "rgb" / "1.png").string(), cv::Mat(camera.height, camera.width, CV_8UC3, cv::Scalar(0)));
+    CHECK_THROWS_WITH(synth::write_corrected_folder(in, tmp.path() / "out2", camera, {0, 0.5, 0}, kFocalBaseline, 5000.0),
+                      Catch::Contains("1.png") && Catch::Contains("16-bit"));
+}

@@ -143,6 +143,37 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
     return c;
 }
 
+// `vobench synth undo-distortion DIR --out OUT`: a copy of a real folder with its depth corrected for the
+// camera's measured disparity distortion (or a given one), to measure what the distortion costs an algorithm.
+CLI::App* add_undo_distortion_command(CLI::App& synth, int& exit_code) {
+    auto* c = synth.add_subcommand(
+        "undo-distortion", "Copy a TUM folder with its depth corrected for a Kinect v1's disparity distortion δ = a·r² + b·x + c·y px");
+    static std::string folder, out, camera = "tum-fr1", field;
+    static double focal_baseline = synth::DistortionFitOptions{}.focal_baseline_px_m;
+    c->add_option("folder", folder, "TUM-layout folder (depth.txt, depth 5000 units per metre)")->required();
+    c->add_option("--out", out, "The corrected copy: a new or empty folder")->required();
+    c->add_option("--camera", camera, "The colour camera the depth is registered to; its measured field is undone")->capture_default_str();
+    c->add_option("--field", field, "A,B,C: undo this field instead of the camera's (e.g. from synth fit-distortion)");
+    c->add_option("--focal-baseline", focal_baseline, "IR focal length × baseline, px·m")->capture_default_str();
+    c->callback([&exit_code] {
+        const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
+        synth::DisparityOffset delta = spec.disparity_distortion_px;
+        if (!field.empty()) {
+            char tail = 0;
+            if (std::sscanf(field.c_str(), "%lf,%lf,%lf%c", &delta[0], &delta[1], &delta[2], &tail) != 3 ||
+                !std::all_of(delta.begin(), delta.end(), [](double v) { return std::isfinite(v); }))
+                throw std::runtime_error("--field: '" + field + "' is not three finite numbers A,B,C");
+        } else if (delta == synth::DisparityOffset{0, 0, 0}) {
+            throw std::runtime_error("--camera " + camera + " has no measured disparity distortion; give one with --field A,B,C");
+        }
+        const std::size_t n = synth::write_corrected_folder(folder, out, spec.color, delta, focal_baseline, 5000.0);
+        std::cout << fmt::format("{}: {} depth images corrected for δ = {:+.4f}·r² {:+.4f}·x {:+.4f}·y px\n", out, n, delta[0], delta[1],
+                                 delta[2]);
+        exit_code = 0;
+    });
+    return c;
+}
+
 }  // namespace
 
 void add_synth_command(CLI::App& app, int& exit_code) {
@@ -175,8 +206,9 @@ void add_synth_command(CLI::App& app, int& exit_code) {
     c->add_option("--out", out, "Output folder (required to render)");
     auto* stats = add_stats_command(*c, exit_code);
     auto* fit = add_fit_distortion_command(*c, exit_code);
-    c->callback([&exit_code, c, stats, fit] {
-        if (c->got_subcommand(stats) || c->got_subcommand(fit)) return;
+    auto* undo = add_undo_distortion_command(*c, exit_code);
+    c->callback([&exit_code, c, stats, fit, undo] {
+        if (c->got_subcommand(stats) || c->got_subcommand(fit) || c->got_subcommand(undo)) return;
         if (out.empty()) throw CLI::RequiredError("--out");
         o.blur = blur == "on";
         o.out = out;

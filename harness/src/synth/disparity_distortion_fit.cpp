@@ -9,6 +9,7 @@
 
 #include <tbb/parallel_for.h>
 #include <Eigen/Dense>
+#include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
 #include <limits>
@@ -63,6 +64,20 @@ std::vector<double> all_residuals(const DepthSequence& s, const DepthRays& rays,
     std::vector<double> out;
     for (const auto& r : per_pair) out.insert(out.end(), r.begin(), r.end());
     return out;
+}
+
+// A list's entries, each checked to name a file inside the folder (the copy writes to the same relative path).
+std::vector<tum::ListEntry> contained_list(const std::filesystem::path& list_file) {
+    std::vector<tum::ListEntry> list = tum::parse_list(read_file(list_file), list_file.string());
+    for (std::size_t k = 0; k < list.size(); ++k) {
+        const std::filesystem::path p(list[k].path);
+        bool escapes = p.is_absolute() || p.has_root_name() || p.empty();
+        for (const auto& part : p) escapes = escapes || part == "..";
+        if (escapes)
+            throw std::runtime_error(list_file.string() + ": entry " + std::to_string(k + 1) + " ('" + list[k].path +
+                                     "') is not a path inside the folder");
+    }
+    return list;
 }
 
 }  // namespace
@@ -150,6 +165,33 @@ double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& ra
         if (std::isfinite(r)) finite.push_back(100.0 * r);
     pairs = finite.size();
     return finite.empty() ? std::numeric_limits<double>::quiet_NaN() : metrics::compute_stats(finite).median;
+}
+
+std::size_t write_corrected_folder(const std::filesystem::path& in, const std::filesystem::path& out, const PinholeCamera& camera,
+                                   const DisparityOffset& delta, double focal_baseline_px_m, double depth_scale) {
+    namespace fs = std::filesystem;
+    if (fs::exists(out) && (!fs::is_directory(out) || !fs::is_empty(out)))
+        throw std::runtime_error(out.string() + ": exists and is not an empty folder; the corrected copy needs a new one");
+    const std::vector<tum::ListEntry> depth = contained_list(in / "depth.txt");
+    const std::vector<tum::ListEntry> rgb = fs::exists(in / "rgb.txt") ? contained_list(in / "rgb.txt") : std::vector<tum::ListEntry>{};
+    fs::create_directories(out);
+    for (const char* name : {"rgb.txt", "depth.txt", "groundtruth.txt"})
+        if (fs::exists(in / name)) fs::copy_file(in / name, out / name);
+    for (const auto& e : rgb) {
+        if (!fs::is_regular_file(in / e.path)) throw std::runtime_error((in / e.path).string() + ": listed in rgb.txt, not a file");
+        fs::create_directories((out / e.path).parent_path());
+        fs::copy_file(in / e.path, out / e.path, fs::copy_options::skip_existing);
+    }
+    for (const auto& e : depth) {
+        const cv::Mat measured = read_depth_metres(in / e.path, depth_scale);
+        require_camera_size(in / e.path, measured, camera);
+        cv::Mat corrected = undo_disparity_offset(measured, camera, delta, focal_baseline_px_m), units;
+        corrected.setTo(0, corrected > 65535.0 / depth_scale);  // beyond what the format holds: no measurement, not a clipped one
+        corrected.convertTo(units, CV_16UC1, depth_scale);      // rounds to the nearest unit
+        fs::create_directories((out / e.path).parent_path());
+        if (!cv::imwrite((out / e.path).string(), units)) throw std::runtime_error((out / e.path).string() + ": cannot be written");
+    }
+    return depth.size();
 }
 
 }  // namespace vobench::synth
