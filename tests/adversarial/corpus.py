@@ -406,7 +406,7 @@ def synth_inputs(args, w):
     refused("undo-distortion into the folder it reads", ["synth", "undo-distortion", ten, "--out", ten, "--field", "0,1,0"],
             r"not an empty folder")
     refused("undo-distortion with a --field that is not three finite numbers",
-            ["synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_nan"), "--field", "0,nan,1"], r"not three finite numbers")
+            ["synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_nan"), "--field", "0,nan,1"], r"--field: '0,nan,1' is not three numbers")
     refused("undo-distortion with a camera that has no measured field and no --field",
             ["synth", "undo-distortion", ten, "--out", os.path.join(d, "undo_nofield"), "--camera", "putk2-kinect1"], r"no measured disparity")
     b = os.path.join(d, "undo_escape")

@@ -1,5 +1,6 @@
 #include "synth/sequence_writer.hpp"
 #include "metrics/trajectory_io.hpp"
+#include "synth/camera_catalog.hpp"
 #include "synth/sensor_model.hpp"
 #include "test_support.hpp"
 
@@ -125,6 +126,10 @@ TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, 
     CHECK(with["stamp_latency_s"]["color"].get<double>() == Approx(synth::kinect1().color_latency_s));
     CHECK(with["stamp_latency_s"]["depth"].get<double>() == Approx(synth::kinect1().depth_latency_s));
     CHECK(without["stamp_latency_s"]["depth"].get<double>() == 0.0);
+    // The disparity distortion as rendered: the camera's, recorded for whoever re-reads the folder.
+    const auto field = synth::camera_by_name_or_file("tum-fr1").disparity_distortion_px;
+    REQUIRE(with["disparity_distortion_px"].size() == 3);
+    for (std::size_t k = 0; k < 3; ++k) CHECK(with["disparity_distortion_px"][k].get<double>() == field[k]);
     // Two stamps cannot fit a clock: they are taken as they are, and synth.json says so.
     CHECK(with["effects"]["stamp_jitter"] == true);
     CHECK(with["camera_clock"]["color"]["fitted"] == false);

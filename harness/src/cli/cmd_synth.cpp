@@ -78,6 +78,16 @@ CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
     return c;
 }
 
+// A disparity offset field given on the command line as "A,B,C" (px); an error naming the option otherwise.
+synth::DisparityOffset parse_offset(const std::string& text, const std::string& option) {
+    synth::DisparityOffset d{};
+    char tail = 0;
+    if (std::sscanf(text.c_str(), "%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &tail) != 3 ||
+        !std::all_of(d.begin(), d.end(), [](double v) { return std::isfinite(v); }))
+        throw std::runtime_error(option + ": '" + text + "' is not three numbers A,B,C");
+    return d;
+}
+
 // `vobench synth fit-distortion DIR`: a Kinect v1's fixed disparity distortion from a real folder and
 // its reference (disparity_distortion_fit.hpp); with --expect, a check that it reproduces given numbers.
 CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
@@ -99,13 +109,7 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
         const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
         const synth::DepthRays rays(spec.color);
         std::optional<synth::DisparityOffset> expected;
-        if (!expect.empty()) {
-            synth::DisparityOffset e{};
-            char tail = 0;
-            if (std::sscanf(expect.c_str(), "%lf,%lf,%lf%c", &e[0], &e[1], &e[2], &tail) != 3)
-                throw std::runtime_error("--expect: '" + expect + "' is not three numbers A,B,C");
-            expected = e;
-        }
+        if (!expect.empty()) expected = parse_offset(expect, "--expect");
         const synth::DepthSequence sequence = synth::read_depth_sequence(folder, spec.color, 5000.0);
         const synth::DistortionFit fit = synth::fit_disparity_distortion(sequence, rays, options);
         const auto& d = fit.delta;
@@ -152,17 +156,16 @@ CLI::App* add_undo_distortion_command(CLI::App& synth, int& exit_code) {
     static double focal_baseline = synth::DistortionFitOptions{}.focal_baseline_px_m;
     c->add_option("folder", folder, "TUM-layout folder (depth.txt, depth 5000 units per metre)")->required();
     c->add_option("--out", out, "The corrected copy: a new or empty folder")->required();
-    c->add_option("--camera", camera, "The colour camera the depth is registered to; its measured field is undone")->capture_default_str();
+    c->add_option("--camera", camera,
+                  "The colour camera the depth is registered to; the field fit-distortion measured on its real frames is undone")
+        ->capture_default_str();
     c->add_option("--field", field, "A,B,C: undo this field instead of the camera's (e.g. from synth fit-distortion)");
     c->add_option("--focal-baseline", focal_baseline, "IR focal length × baseline, px·m")->capture_default_str();
     c->callback([&exit_code] {
         const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
-        synth::DisparityOffset delta = spec.disparity_distortion_px;
+        synth::DisparityOffset delta = spec.disparity_distortion_fit_px;
         if (!field.empty()) {
-            char tail = 0;
-            if (std::sscanf(field.c_str(), "%lf,%lf,%lf%c", &delta[0], &delta[1], &delta[2], &tail) != 3 ||
-                !std::all_of(delta.begin(), delta.end(), [](double v) { return std::isfinite(v); }))
-                throw std::runtime_error("--field: '" + field + "' is not three finite numbers A,B,C");
+            delta = parse_offset(field, "--field");
         } else if (delta == synth::DisparityOffset{0, 0, 0}) {
             throw std::runtime_error("--camera " + camera + " has no measured disparity distortion; give one with --field A,B,C");
         }

@@ -22,9 +22,13 @@ struct CameraSpec {
     // Kinect v1 only: the registered depth grid is the colour image divided by this (PUTK² recorded
     // 320×240 depth beside 640×480 colour; TUM recorded depth at the full 640×480).
     int depth_divisor = 1;
-    // Kinect v1 only: the depth camera's measured disparity distortion (SensorModel::disparity_distortion_px;
-    // zero where none was measured).
+    // Kinect v1 only: the depth camera's disparity distortion as the renderer applies it
+    // (SensorModel::disparity_distortion_px; zero where none was measured) — chosen so that renderings
+    // fitted by `synth fit-distortion` read back `disparity_distortion_fit_px`.
     std::array<double, 3> disparity_distortion_px{};
+    // What `synth fit-distortion` measures on the camera's real frames (a, b, c px): the field as that fit
+    // sees it, the IR camera's rolling shutter in its row term. `synth undo-distortion` undoes this one.
+    std::array<double, 3> disparity_distortion_fit_px{};
 };
 
 std::vector<std::string> camera_names();

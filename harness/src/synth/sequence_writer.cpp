@@ -354,6 +354,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"frame_rate_hz", kFrameRateHz},
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
+                              {"disparity_distortion_px", sensor.disparity_distortion_px},
                               {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
                               {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
                               {"room_boxes", scene.boxes.size()}};
