@@ -71,7 +71,7 @@ double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& ra
 // much of an algorithm's error on real frames the sensor's distortion causes (docs/synthetic-sensors.md).
 // `out` must not exist or be empty, and every listed path must stay inside the folder (no absolute path,
 // no `..`); both are checked before anything is written. Throws std::runtime_error naming the file (and
-// the list's line) otherwise, or when an image cannot be read, is not a 16-bit depth image or not the
+// the list entry) otherwise, or when an image cannot be read, is not a 16-bit depth image or not the
 // camera's size. Returns the number of depth images written.
 std::size_t write_corrected_folder(const std::filesystem::path& in, const std::filesystem::path& out, const PinholeCamera& camera,
                                    const DisparityOffset& delta, double focal_baseline_px_m, double depth_scale);
