@@ -401,6 +401,11 @@ def synth_inputs(args, w):
             ["synth", "fit-distortion", os.path.join(d, "stats_gt_elsewhere"), "--camera", "putk2-kinect1"], r"covers no pair")
     refused("fit-distortion with an --expect that is not three numbers",
             ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "1,2;rm -rf /"], r"not three numbers")
+    refused("fit-distortion with a --tolerance that is neither one nor three numbers",
+            ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "0,1,0", "--tolerance", "0.1,0.2"],
+            r"--tolerance: '0.1,0.2' is not three numbers")
+    refused("fit-distortion with a negative --tolerance",
+            ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "0,1,0", "--tolerance", "-1"], r"negative")
     # synth undo-distortion writes a corrected copy: never over a folder with contents, never outside
     # its output (a list naming ../ or an absolute path), never with a field that is not three numbers.
     refused("undo-distortion into the folder it reads", ["synth", "undo-distortion", ten, "--out", ten, "--field", "0,1,0"],

@@ -18,10 +18,5 @@ fi
 rm -rf "$work"
 "$vobench" synth --sensor kinect1 --camera tum-fr1 --trajectory "$seq/groundtruth.txt" --trajectory-format tum --stamps "$seq" \
   --layout tum --seed 1 --out "$work/rgbd_dataset_freiburg1_rpy"
-read_back=$("$vobench" synth fit-distortion "$work/rgbd_dataset_freiburg1_rpy" --camera tum-fr1 --expect="$coefficients" \
-  --tolerance 0.2) || { echo "$read_back"; exit 1; }
-echo "$read_back"
-b_read=$(echo "$read_back" | sed -n '1s/.*·r² \([-+0-9.]*\)·x.*/\1/p')
-b_expected=$(echo "$coefficients" | cut -d, -f2)
-python3 -c "import sys; b, e = float(sys.argv[1]), float(sys.argv[2]); print(f'rendered b {b:+.4f}, real {e:+.4f}'); sys.exit(abs(b - e) > 0.05)" \
-  "$b_read" "$b_expected"
+"$vobench" synth fit-distortion "$work/rgbd_dataset_freiburg1_rpy" --camera tum-fr1 --expect="$coefficients" \
+  --tolerance 0.2,0.05,0.2

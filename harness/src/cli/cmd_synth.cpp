@@ -94,7 +94,8 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
     auto* c = synth.add_subcommand("fit-distortion",
                                    "Fit a Kinect v1's disparity distortion δ = a·r² + b·x + c·y px to a TUM folder's depth and reference");
     static std::string folder, validate, camera = "tum-fr1", expect;
-    static double latency_ms = synth::kinect1().depth_latency_s * 1e3, tolerance = 0.05;
+    static double latency_ms = synth::kinect1().depth_latency_s * 1e3;
+    static std::string tolerance = "0.05";
     static synth::DistortionFitOptions options;
     c->add_option("folder", folder, "TUM-layout folder with depth.txt and groundtruth.txt (depth 5000 units per metre)")->required();
     c->add_option("--camera", camera, "The colour camera the depth is registered to (a name or a camera file)")->capture_default_str();
@@ -103,13 +104,19 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
     c->add_option("--focal-baseline", options.focal_baseline_px_m, "IR focal length × baseline, px·m")->capture_default_str();
     c->add_option("--iterations", options.iterations, "Gauss–Newton iterations")->check(CLI::Range(1, 100))->capture_default_str();
     c->add_option("--expect", expect, "A,B,C: exit 1 unless the fit reproduces these coefficients and lowers the residual at 16 frames");
-    c->add_option("--tolerance", tolerance, "For --expect: largest difference per coefficient, px")->capture_default_str();
+    c->add_option("--tolerance", tolerance, "For --expect: largest difference per coefficient, px: T for all three, or TA,TB,TC")
+        ->capture_default_str();
     c->callback([&exit_code] {
         options.depth_latency_s = latency_ms * 1e-3;
         const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
         const synth::DepthRays rays(spec.color);
         std::optional<synth::DisparityOffset> expected;
         if (!expect.empty()) expected = parse_offset(expect, "--expect");
+        const synth::DisparityOffset allowed = tolerance.find(',') == std::string::npos
+                                                   ? parse_offset(tolerance + "," + tolerance + "," + tolerance, "--tolerance")
+                                                   : parse_offset(tolerance, "--tolerance");
+        if (std::any_of(allowed.begin(), allowed.end(), [](double t) { return t < 0; }))
+            throw std::runtime_error("--tolerance: '" + tolerance + "' has a negative number");
         const synth::DepthSequence sequence = synth::read_depth_sequence(folder, spec.color, 5000.0);
         const synth::DistortionFit fit = synth::fit_disparity_distortion(sequence, rays, options);
         const auto& d = fit.delta;
@@ -131,11 +138,10 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
         if (!validate.empty()) report(validate, synth::read_depth_sequence(validate, spec.color, 5000.0), {1, 2, 4, 8});
         exit_code = 0;
         if (expected) {
-            double worst = 0;
-            for (int k = 0; k < 3; ++k)
-                worst = std::max(worst, std::abs(d[static_cast<std::size_t>(k)] - (*expected)[static_cast<std::size_t>(k)]));
+            bool within = true;
+            for (std::size_t k = 0; k < 3; ++k) within = within && std::abs(d[k] - (*expected)[k]) <= allowed[k];
             const bool lowered = with16 < without16;
-            if (worst > tolerance || !lowered) {
+            if (!within || !lowered) {
                 std::cout << fmt::format("FAIL: fitted {:.3f}, {:.3f}, {:.3f}, expected {} ± {} px; residual at 16 frames lowered: {}\n",
                                          d[0], d[1], d[2], expect, tolerance, lowered);
                 exit_code = 1;
