@@ -12,15 +12,47 @@ Material desk_material(Random& r, uint64_t seed) {
     return material(r, TextureStyle::Wood, colour(r, 0.45f, 0.8f), colour(r, 0.2f, 0.4f), seed);
 }
 
+void build_desk(const Box& desk, double top, double floor, Random& r, uint64_t& next_seed, const AddBox& add) {
+    constexpr double kTop = 0.03, kLeg = 0.04, kInset = 0.03;
+    const double underside = top + kTop;  // z down
+    add({desk.min.x(), desk.min.y(), top}, {desk.max.x(), desk.max.y(), underside}, desk_material(r, ++next_seed));
+    const Material frame =
+        r.uniform(0, 1) < 0.6
+            ? material(r, TextureStyle::Paint, Eigen::Vector3f(0.12f, 0.12f, 0.13f), Eigen::Vector3f(0.05f, 0.05f, 0.05f), ++next_seed)
+            : material(r, TextureStyle::Paint, Eigen::Vector3f(0.7f, 0.7f, 0.72f), Eigen::Vector3f(0.5f, 0.5f, 0.5f), ++next_seed);
+    for (int corner = 0; corner < 4; ++corner) {
+        const double x = corner % 2 == 0 ? desk.min.x() + kInset : desk.max.x() - kInset - kLeg;
+        const double y = corner / 2 == 0 ? desk.min.y() + kInset : desk.max.y() - kInset - kLeg;
+        add({x, y, underside}, {x + kLeg, y + kLeg, floor}, frame);
+    }
+    if (r.uniform(0, 1) < 0.5) {
+        const bool long_x = desk.max.x() - desk.min.x() >= desk.max.y() - desk.min.y();
+        const bool at_max = r.uniform(0, 1) < 0.5;
+        const double panel_h = r.uniform(0.3, 0.45), t = 0.02;
+        if (long_x) {
+            const double y = at_max ? desk.max.y() - kInset - t : desk.min.y() + kInset;
+            add({desk.min.x() + kInset + kLeg, y, underside}, {desk.max.x() - kInset - kLeg, y + t, underside + panel_h}, frame);
+        } else {
+            const double x = at_max ? desk.max.x() - kInset - t : desk.min.x() + kInset;
+            add({x, desk.min.y() + kInset + kLeg, underside}, {x + t, desk.max.y() - kInset - kLeg, underside + panel_h}, frame);
+        }
+    }
+}
+
 // What stands on a real office desk (z down: `top` is the desk's upper surface): a monitor at the back,
 // keyboard and mouse before it, papers, books, a mug, a box, cables. Sizes of common objects; each
 // one a box.
-void furnish_desk(const Box& desk, double top, Random& r, uint64_t& next_seed, const AddBox& add) {
+void furnish_desk(const Box& desk, double top, Random& r, uint64_t& next_seed, const AddBox& add, const Eigen::Vector2d* user) {
     const bool long_x = desk.max.x() - desk.min.x() >= desk.max.y() - desk.min.y();
     // Desk coordinates: a along the long side, b across it from the front edge.
     const double len = long_x ? desk.max.x() - desk.min.x() : desk.max.y() - desk.min.y();
     const double depth = long_x ? desk.max.y() - desk.min.y() : desk.max.x() - desk.min.x();
-    const bool back_at_max = r.uniform(0, 1) < 0.5;
+    bool back_at_max = r.uniform(0, 1) < 0.5;
+    if (user) {  // the back is the long side away from the user
+        const double across = long_x ? user->y() : user->x(),
+                     middle = long_x ? (desk.min.y() + desk.max.y()) / 2 : (desk.min.x() + desk.max.x()) / 2;
+        back_at_max = across < middle;
+    }
     auto place = [&](double a0, double a1, double b0, double b1, double h, const Material& m) {
         const double lo_b = back_at_max ? b0 : depth - b1, hi_b = back_at_max ? b1 : depth - b0;
         Eigen::Vector3d mn, mx;

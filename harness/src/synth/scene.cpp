@@ -138,6 +138,10 @@ Eigen::Vector3f Scene::shade(const Hit& hit, const Eigen::Vector3d& view_dir, do
 
 namespace {
 
+// How far from the camera (horizontally) a desk it looks down at may stand: an arm's length plus a
+// desk's depth.
+constexpr double kDeskReach = 1.3;
+
 // Distance in the floor plane from (x, y) to the box's footprint.
 double footprint_distance(const Box& b, double x, double y) {
     const double dx = std::max({b.min.x() - x, 0.0, x - b.max.x()});
@@ -254,15 +258,28 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         add(pane.min, pane.max, glass);
     }
 
-    // Desks where the cameras look down: every 10th pose's central ray, met at desk height 0.3–2.2 m
-    // away (horizontally), gets a desk under that point, clear of the path by 0.25 m.
-    for (std::size_t k = 0; k < poses.size(); k += 10) {
+    // Desks where the cameras look down: every 10th pose's central ray, met at desk height within
+    // kDeskReach (horizontally), gets a desk under that point, clear of the path by 0.25 m — the desk
+    // the camera's holder stands at. The nearest look-at points first: the desk a camera is held over
+    // is the one under its steepest views; a view that meets desk height further away looks past it
+    // (across the room, as fr1/rpy's fast turns do), and gets no desk in its way.
+    std::vector<std::size_t> looked_at;
+    for (std::size_t k = 0; k < poses.size(); k += 10) looked_at.push_back(k);
+    const auto reach_at_desk_height = [&](std::size_t k) {
+        const Eigen::Vector3d at = poses[k].translation(), dir = poses[k].linear().col(2);
+        const double top = floor - 0.74;
+        if (dir.z() < 0.2 || at.z() >= top) return std::numeric_limits<double>::infinity();
+        return std::hypot(dir.x(), dir.y()) * (top - at.z()) / dir.z();
+    };
+    std::stable_sort(looked_at.begin(), looked_at.end(),
+                     [&](std::size_t a, std::size_t b) { return reach_at_desk_height(a) < reach_at_desk_height(b); });
+    for (std::size_t k : looked_at) {
         const Eigen::Vector3d at = poses[k].translation(), dir = poses[k].linear().col(2);
         const double desk_h = r.uniform(0.72, 0.76), top = floor - desk_h;
         if (dir.z() < 0.2 || at.z() >= top) continue;  // looking level or up, or below desk height
         const Eigen::Vector3d hit = at + dir * ((top - at.z()) / dir.z());
         const double reach = std::hypot(hit.x() - at.x(), hit.y() - at.y());
-        if (reach < 0.3 || reach > 2.2) continue;
+        if (reach < 0.3 || reach > kDeskReach) continue;
         // The long side across the view, snapped to the room's axes.
         const bool long_x = std::abs(dir.y()) >= std::abs(dir.x());
         const double len = r.uniform(1.4, 1.8), depth = r.uniform(0.7, 0.85);
@@ -273,8 +290,9 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         bool clear = true;
         for (const auto& p : path) clear = clear && footprint_distance(desk, p.x(), p.y()) >= 0.25;
         if (!clear) continue;
-        add(desk.min, desk.max, desk_material(r, ++next_seed));
-        furnish_desk(desk, top, r, next_seed, add);
+        build_desk(desk, top, floor, r, next_seed, add);
+        const Eigen::Vector2d user(at.x(), at.y());
+        furnish_desk(desk, top, r, next_seed, add, &user);
     }
 
     // Furniture along the walls and in the open, rejected where it would block the path.
@@ -314,11 +332,13 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
                 h = r.uniform(0.2, 0.6);
                 break;
         }
-        // Against a wall (most furniture) or free-standing.
+        // Shelves, cabinets and boxes against a wall, pillars free-standing, desks either (a coin): the
+        // open floor of an office holds desks, so a view across the room meets desks and the far wall.
         double cx, cy;
         const bool swap = r.uniform(0, 1) < 0.5;
         if (swap) std::swap(w, d);
-        if (kind != 4 && r.uniform(0, 1) < 0.5) {
+        const bool against_wall = kind != 4 && (r.uniform(0, 1) < 0.5 || kind != 0);
+        if (against_wall) {
             const int wall = r.pick(4);
             cx = wall == 0 ? x0 + w / 2 : wall == 1 ? x1 - w / 2 : r.uniform(x0 + w / 2, x1 - w / 2);
             cy = wall == 2 ? y0 + d / 2 : wall == 3 ? y1 - d / 2 : r.uniform(y0 + d / 2, y1 - d / 2);
@@ -329,12 +349,16 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
         Box b{Eigen::Vector3d(cx - w / 2, cy - d / 2, floor - h), Eigen::Vector3d(cx + w / 2, cy + d / 2, floor), 0, false};
         if (!clear_of_path(b)) continue;
         if (overlaps_any(s, b)) continue;
-        TextureStyle style = kind == 0 || kind == 1 ? TextureStyle::Wood
-                             : kind == 4            ? TextureStyle::Tiles
-                             : kind == 2            ? TextureStyle::Tiles
-                                                    : TextureStyle::Carpet;
-        add(b.min, b.max, material(r, style, colour(r, 0.4f, 0.75f), colour(r, 0.2f, 0.45f), ++next_seed));
-        if (kind == 0) furnish_desk(b, floor - h, r, next_seed, add);
+        TextureStyle style = kind == 1   ? TextureStyle::Wood
+                             : kind == 4 ? TextureStyle::Tiles
+                             : kind == 2 ? TextureStyle::Tiles
+                                         : TextureStyle::Carpet;
+        if (kind == 0) {
+            build_desk(b, floor - h, floor, r, next_seed, add);
+            furnish_desk(b, floor - h, r, next_seed, add);
+        } else {
+            add(b.min, b.max, material(r, style, colour(r, 0.4f, 0.75f), colour(r, 0.2f, 0.45f), ++next_seed));
+        }
         if (kind == 1) {  // book rows on the shelf's faces
             for (double z = floor - 0.3; z > floor - h + 0.2; z -= 0.4)
                 add({cx - w / 2 - 0.01, cy - d / 2 - 0.01, z - 0.25}, {cx + w / 2 + 0.01, cy + d / 2 + 0.01, z - 0.02},
