@@ -12,6 +12,7 @@ import argparse
 import csv
 import io
 import json
+import math
 import os
 import random
 import re
@@ -58,6 +59,12 @@ def grey_png(width, height, level=128):
     """An 8-bit single-channel PNG of one grey level."""
     raw = b"".join(b"\x00" + bytes([level]) * width for _ in range(height))
     return png_of([(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 0, 0, 0, 0)), (b"IDAT", zlib.compress(raw)), (b"IEND", b"")])
+
+
+def depth_png(width, height, value):
+    """A 16-bit single-channel PNG whose pixel (u, v) holds value(u, v) (TUM depth units)."""
+    raw = b"".join(b"\x00" + b"".join(struct.pack(">H", value(u, v)) for u in range(width)) for v in range(height))
+    return png_of([(b"IHDR", struct.pack(">IIBBBBB", width, height, 16, 0, 0, 0, 0)), (b"IDAT", zlib.compress(raw)), (b"IEND", b"")])
 
 
 def write(path, text):
@@ -360,6 +367,22 @@ def synth_inputs(args, w):
         write(os.path.join(b, "groundtruth.txt"), text)
         refused(f"stats --camera on a folder whose groundtruth.txt has a {name.replace('_', ' ')}",
                 ["synth", "stats", b, "--camera", "putk2-kinect1"], re.escape(os.path.join(b, "groundtruth.txt")) + r":1")
+    # The projector-shadow statistics on depth that has no steps at all (every pixel a hole) and on depth
+    # that is nothing but steps (a comb of 1-px columns at 1 m and 1.3 m with 1-px holes): the first leaves
+    # them out (null, no made-up share), the second gives shares within [0, 1] and finite widths.
+    for name, value in {"all_holes": lambda u, v: 0, "comb": lambda u, v: (0, 5000, 0, 6500)[u % 4]}.items():
+        b = os.path.join(d, "stats_shadow_" + name)
+        shutil.copytree(good, b)
+        for line in open(os.path.join(b, "depth.txt")):
+            if not line.startswith("#"):
+                open(os.path.join(b, line.split()[1]), "wb").write(depth_png(640, 480, value))
+        r = run([args.vobench, "synth", "stats", b, "--camera", "putk2-kinect1", "--json"], timeout=120)
+        stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
+        share, width = stats.get("shadow.no_hole_4_16px"), stats.get("shadow.hole_8_40px")
+        ok = share is None and width is None if name == "all_holes" else (
+            share is not None and 0 <= share <= 1 and width is not None and math.isfinite(width))
+        check(f"synth stats --camera: projector-shadow statistics on depth that is {name.replace('_', ' ')}", r.returncode == 0 and ok,
+              r.stderr[-500:] + f" share {share} width {width}")
     # A reference that covers none of the frames: the statistics that need it are left out (no made-up
     # latency or residual), the rest are measured. (10 frames: the latency scan needs pairs 4 frames
     # apart whose stamps the reference covers 40 ms before and 10 ms after; the healthy folder has it.)

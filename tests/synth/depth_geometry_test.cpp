@@ -156,3 +156,27 @@ TEST_CASE("stats --camera on the real TUM sample: its reference disagrees with i
     // Without a camera the statistics that need one are left out.
     for (const auto& v : synth::measure_folder(dir, 3).values) CHECK(v.key.rfind("reference.", 0) != 0);
 }
+
+TEST_CASE("projector shadow steps: a hole beside a near-to-far step is measured, other holes and far-to-near steps are not",
+          "[synth][stats][depth_geometry]") {
+    // Rows: a 1 m block over columns 100–199 on a 2 m wall, a 10-px hole right of it (the shadow side),
+    // a 40-px hole further on (too wide to be a shadow), and a direct step back down at column 400.
+    cv::Mat depth(8, 640, CV_32FC1, cv::Scalar(2.0f));
+    depth.colRange(100, 200).setTo(1.0f);
+    depth.colRange(200, 210).setTo(0.0f);
+    depth.colRange(300, 340).setTo(0.0f);
+    depth.colRange(400, 500).setTo(1.5f);
+    depth.colRange(500, 640).setTo(3.0f);
+    const double fx = 500, baseline = 0.075;
+    const auto steps = synth::projector_shadow_steps(depth, fx, baseline);
+    REQUIRE(steps.size() == 2 * 4);  // every second row: the shadowed step at 200 and the direct one at 500
+    for (std::size_t k = 0; k < steps.size(); k += 2) {
+        CHECK(steps[k].hole_px == 10);
+        CHECK(steps[k].predicted_px == Approx(fx * baseline * (1.0 / 1.0 - 1.0 / 2.0)));
+        CHECK(steps[k + 1].hole_px == 0);
+        CHECK(steps[k + 1].predicted_px == Approx(fx * baseline * (1.0 / 1.5 - 1.0 / 3.0)));
+    }
+    // A hole that runs to the image's edge has no far side: no step.
+    depth.colRange(500, 640).setTo(0.0f);
+    CHECK(synth::projector_shadow_steps(depth, fx, baseline).size() == 4);
+}

@@ -244,4 +244,28 @@ IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays) 
     return out;
 }
 
+std::vector<ShadowStep> projector_shadow_steps(const cv::Mat& depth_m, double fx, double baseline_m) {
+    constexpr int kMaxHolePx = 30;
+    constexpr float kStep = 0.95f;  // the nearer range below 95 % of the farther one
+    std::vector<ShadowStep> steps;
+    const double fb = fx * baseline_m;
+    for (int v = 0; v < depth_m.rows; v += 2) {
+        const float* row = depth_m.ptr<float>(v);
+        for (int u = 1; u < depth_m.cols; ++u) {
+            const float near = row[u - 1];
+            if (near <= 0) continue;
+            if (row[u] > 0) {
+                if (near < kStep * row[u]) steps.push_back({fb * (1.0 / near - 1.0 / row[u]), 0});
+                continue;
+            }
+            const int start = u;
+            while (u < depth_m.cols && row[u] <= 0) ++u;
+            if (u < depth_m.cols && u - start <= kMaxHolePx && near < kStep * row[u])
+                steps.push_back({fb * (1.0 / near - 1.0 / row[u]), u - start});
+            --u;  // the pixel after the hole may start the next step
+        }
+    }
+    return steps;
+}
+
 }  // namespace vobench::synth

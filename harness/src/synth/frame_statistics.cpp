@@ -308,6 +308,19 @@ void measure_timing(const std::filesystem::path& folder, const std::vector<tum::
     }
 }
 
+// How much of the projector's geometric shadow the depth shows as a hole (depth_geometry.hpp), with
+// Kinect v1's projector–IR baseline: of the steps whose shadow would be 4–16 px, the share that show
+// none, and the hole's median width where it would be 8–40 px.
+void measure_shadow_steps(const cv::Mat& depth_m, double fx, Accumulator& acc) {
+    constexpr double kKinect1Baseline = 0.075;  // metres (sensor_model.hpp)
+    for (const ShadowStep& s : projector_shadow_steps(depth_m, fx, kKinect1Baseline)) {
+        if (s.predicted_px >= 4 && s.predicted_px < 16)
+            acc.ratio("shadow.no_hole_4_16px", "depth steps with a 4–16 px projector shadow that show no hole", s.hole_px == 0 ? 1 : 0, 1);
+        if (s.predicted_px >= 8 && s.predicted_px < 40)
+            acc.sample("shadow.hole_8_40px", "hole beside a depth step with an 8–40 px projector shadow, px (median)", s.hole_px);
+    }
+}
+
 }  // namespace
 
 FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale,
@@ -342,6 +355,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
             const IcpConditioning c = icp_conditioning(depth_m, *rays);
             acc.sample("geometry.icp_condition", "ICP conditioning λmax/λmin (Gelfand 2003; median)", c.condition);
             acc.sample("geometry.icp_weakest", "ICP weakest constraint λmin, m² (median)", c.weakest);
+            measure_shadow_steps(depth_m, camera->fx, acc);
         }
         const double offset_ms = std::abs(rgb_stamps[m.first] - depth_stamps[m.second]) * 1e3;
         acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);

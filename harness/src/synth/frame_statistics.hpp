@@ -19,8 +19,8 @@
 //   registration: the shift (±4 px) of the depth-step map (centred steps over 10 % of z) that best
 //     overlaps the colour-edge map (Sobel > 60), pooled over frames — depth–colour misregistration.
 // With a camera model (`--camera`), also (depth_geometry.hpp): the ICP conditioning of each frame's
-// depth, and — when the folder has groundtruth.txt — the depth residual under the reference's motion at
-// gaps of 1, 4 and 16 frames (how far the ground truth disagrees with the images).
+// depth, how much of the projector's shadow beside depth steps the depth shows as holes, and — when the folder has groundtruth.txt — the
+// depth residual under the reference's motion at gaps of 1, 4 and 16 frames (how far the ground truth disagrees with the images).
 #pragma once
 
 #include "synth/sensor_model.hpp"
