@@ -1,5 +1,6 @@
 // The sensor models, checked statistically on rendered flat walls and step edges at known distances.
 #include "synth/camera_catalog.hpp"
+#include "synth/depth_geometry.hpp"
 #include "synth/renderer.hpp"
 #include "synth/smooth_field.hpp"
 
@@ -129,6 +130,44 @@ TEST_CASE("at a step edge Kinect v1 loses more depth, and Kinect v2 shows flying
     CHECK(static_cast<double>(m1) / b1 > 2.0 * static_cast<double>(m2) / b2);
     CHECK(f2 > 10);
     CHECK(f1 == 0);
+}
+
+TEST_CASE("Kinect v1's projector shadow beside an occluder is its geometry narrowed by shadow_fill_px, filled with the occluder's depth",
+          "[synth][sensor]") {
+    // The box at 1 m covers the view's −x half, the wall is at 3 m; the projector sits at −x of the colour
+    // camera, so the shadow lies on the wall right of the box's edge.
+    TestRig rig(3.0, 1.0);
+    auto render = [&](int fill) {
+        SensorModel s = kinect1();
+        s.shadow_fill_px = fill;
+        s.effects.edge_dropout = s.effects.depth_noise = s.effects.dark_dropout = s.effects.depth_border = false;
+        return Renderer(rig.scene, s, 3).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+    };
+    const SensorModel k1 = kinect1();
+    const double projector = std::abs(k1.projector_in_color.x());
+    auto shadow_widths = [&](const cv::Mat& d) {
+        std::vector<ShadowStep> steps = projector_shadow_steps(d, k1.depth.fx, projector);
+        REQUIRE(steps.size() > static_cast<std::size_t>(d.rows / 4));
+        return steps;
+    };
+    const cv::Mat geometric = render(0), fattened = render(6);
+    const auto plain = shadow_widths(geometric), filled = shadow_widths(fattened);
+    REQUIRE(plain.size() == filled.size());
+    const int fill_px = static_cast<int>(std::lround(6 * geometric.cols / 640.0));
+    for (std::size_t k = 0; k < plain.size(); ++k) {
+        INFO("step " << k << ": predicted " << plain[k].predicted_px << " px, hole " << plain[k].hole_px << " then " << filled[k].hole_px);
+        CHECK(std::abs(plain[k].hole_px - plain[k].predicted_px) <= 1.5);
+        CHECK(filled[k].hole_px == plain[k].hole_px - fill_px);
+    }
+    // The filled pixels carry the occluder's depth.
+    const int v = geometric.rows / 2;
+    int filled_count = 0;
+    for (int u = 0; u < geometric.cols; ++u)
+        if (geometric.at<float>(v, u) <= 0 && fattened.at<float>(v, u) > 0) {
+            CHECK(fattened.at<float>(v, u) == Approx(1.0).margin(0.01));
+            ++filled_count;
+        }
+    CHECK(filled_count == fill_px);
 }
 
 TEST_CASE("Kinect v1 returns thin out with range before its limit and the border of its registered image is unmeasured",

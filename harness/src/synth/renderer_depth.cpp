@@ -17,6 +17,27 @@
 
 namespace vobench::synth {
 
+namespace {
+
+// Foreground fattening (sensor_model.hpp, shadow_fill_px): each run of shadowed pixels takes, over its
+// first `fill` pixels, the depth of the measured pixel it starts beside. The shadow lies on the side of
+// the occluder away from the projector, so runs are walked from the occluder: towards +u when the
+// projector sits at −x of the colour camera.
+void fill_shadow_edges(cv::Mat& depth, const cv::Mat& shadowed, int fill, bool towards_plus_u) {
+    const int W = depth.cols, step = towards_plus_u ? 1 : -1;
+    tbb::parallel_for(0, depth.rows, [&](int v) {
+        float* row = depth.ptr<float>(v);
+        const uint8_t* shade = shadowed.ptr<uint8_t>(v);
+        for (int u = towards_plus_u ? 1 : W - 2; u >= 0 && u < W; u += step) {
+            const float occluder = row[u - step];
+            if (!shade[u] || shade[u - step] || occluder <= 0) continue;
+            for (int k = 0; k < fill && u >= 0 && u < W && shade[u]; ++k, u += step) row[u] = occluder;
+        }
+    });
+}
+
+}  // namespace
+
 Renderer::DepthStreams::DepthStreams(uint64_t seed, uint64_t frame)
     : lateral(seed, kLateral, frame),
       lost_return(seed, kLostReturn, frame),
@@ -113,7 +134,8 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     };
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
-    cv::Mat lost = cv::Mat::zeros(H, W, CV_8UC1);  // 255 where the return is lost (dark, glossy, far, depth step)
+    cv::Mat lost = cv::Mat::zeros(H, W, CV_8UC1);      // 255 where the return is lost (dark, glossy, far, depth step)
+    cv::Mat shadowed = cv::Mat::zeros(H, W, CV_8UC1);  // 255 where the projector's pattern does not reach
     tbb::parallel_for(0, H, [&](int v) {
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
@@ -132,7 +154,10 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             if (return_lost(random, pixel, ray)) lost.at<uint8_t>(v, u) = 255;
             const Hit& hit = ray.hit;
             // The projector's shadow: a point the pattern cannot reach has no disparity.
-            if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) continue;
+            if (fx.projector_shadow && scene_.occluded(hit.point + hit.normal * 1e-4, depth_pose * sensor_.projector_in_color)) {
+                shadowed.at<uint8_t>(v, u) = 255;
+                continue;
+            }
             const double offset = distortion ? disparity_offset(u, v) : 0.0;
             if (!fx.depth_noise && offset == 0) {
                 out.depth_native.at<float>(v, u) = static_cast<float>(z);
@@ -148,6 +173,9 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             out.depth_native.at<float>(v, u) = static_cast<float>(fb / d);
         }
     });
+    if (fx.projector_shadow && sensor_.shadow_fill_px > 0)
+        fill_shadow_edges(out.depth_native, shadowed, static_cast<int>(std::lround(sensor_.shadow_fill_px * px)),
+                          sensor_.projector_in_color.x() < 0);
     if (fx.edge_dropout) {
         // The correlation window straddling a depth step matches neither side.
         const cv::Mat measured = out.depth_native.clone();

@@ -85,6 +85,10 @@ struct SensorModel {
     // unit). Zero unless the camera (`--camera`) brings a measured one.
     std::array<double, 3> disparity_distortion_px{};
     Eigen::Vector3d projector_in_color{-0.05, 0.0, 0.0};
+    // Kinect v1: the correlation window that straddles an occluder's edge still matches the occluder's
+    // pattern, so its depth runs on this far (pixels of a 640-wide image) into the projector's shadow
+    // beside it (foreground fattening); only wider shadows stay holes. 0: the geometric shadow.
+    int shadow_fill_px = 0;
     // Time of flight (Fankhauser et al. 2015, axial noise fit, mm):
     //   σ_z(z, θ) = 1.5 − 0.5·z + 0.3·z² + 0.1·z^1.5·θ²/(π/2 − θ)²
     double flying_pixel_probability = 0.6;  // of a pixel at a depth discontinuity (> 5 cm step)
