@@ -3,8 +3,9 @@
 # distortion (disparity_distortion_fit_px, harness/src/synth/camera_catalog.cpp) is what `vobench synth
 # fit-distortion` measures on the real fr1/rpy sample (within 0.05 px), and it lowers the residual there
 # (fr1/desk, which the fit never sees, is printed beside it); and a rendering of the sample's poses
-# through the camera reads back the same field (b within 0.05 px, a and c within 0.2: c moves by ±0.2
-# from office to office).
+# through the camera reads back the same field (a within 0.1 px, b within 0.05, c within 0.5: over the
+# ten offices of sim_to_real.sh a reads back −0.43…−0.35, b 1.049–1.084 and c −1.38…−0.60, office 1
+# the farthest from the mean, −0.969: 90 frames pin the row term down least).
 set -euo pipefail
 vobench=$1 src=$2 real=$3 work=$4
 seq=$real/rgbd_dataset_freiburg1_rpy
@@ -19,4 +20,4 @@ rm -rf "$work"
 "$vobench" synth --sensor kinect1 --camera tum-fr1 --trajectory "$seq/groundtruth.txt" --trajectory-format tum --stamps "$seq" \
   --layout tum --seed 1 --out "$work/rgbd_dataset_freiburg1_rpy"
 "$vobench" synth fit-distortion "$work/rgbd_dataset_freiburg1_rpy" --camera tum-fr1 --expect="$coefficients" \
-  --tolerance 0.2,0.05,0.2
+  --tolerance 0.1,0.05,0.5

@@ -1,6 +1,7 @@
 #include "synth/sequence_writer.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_catalog.hpp"
+#include "synth/scene.hpp"
 #include "synth/sensor_model.hpp"
 #include "test_support.hpp"
 
@@ -130,6 +131,10 @@ TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, 
     const auto field = synth::camera_by_name_or_file("tum-fr1").disparity_distortion_px;
     REQUIRE(with["disparity_distortion_px"].size() == 3);
     for (std::size_t k = 0; k < 3; ++k) CHECK(with["disparity_distortion_px"][k].get<double>() == field[k]);
+    // The office and the projector shadow as rendered: TUM's hall for its camera, the fill Kinect v1 has.
+    CHECK(with["min_room_m"].get<double>() == synth::camera_by_name_or_file("tum-fr1").min_room_m);
+    CHECK(with["min_room_m"].get<double>() > synth::OfficeOptions{}.min_room);
+    CHECK(with["shadow_fill_px"].get<int>() == synth::kinect1().shadow_fill_px);
     // Two stamps cannot fit a clock: they are taken as they are, and synth.json says so.
     CHECK(with["effects"]["stamp_jitter"] == true);
     CHECK(with["camera_clock"]["color"]["fitted"] == false);

@@ -29,6 +29,9 @@ struct CameraSpec {
     // What `synth fit-distortion` measures on the camera's real frames (a, b, c px): the field as that fit
     // sees it, the IR camera's rolling shutter in its row term. `synth undo-distortion` undoes this one.
     std::array<double, 3> disparity_distortion_fit_px{};
+    // Where the camera's real frames were recorded, as far as the office around a trajectory should
+    // follow it: the room is at least this wide and long, metres (0: OfficeOptions' default).
+    double min_room_m = 0;
 };
 
 std::vector<std::string> camera_names();

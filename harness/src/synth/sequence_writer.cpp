@@ -16,6 +16,7 @@
 
 #include <chrono>
 #include <future>
+#include <optional>
 
 #ifndef VOBENCH_VERSION
 #define VOBENCH_VERSION "unknown"
@@ -207,7 +208,9 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         throw std::invalid_argument("--layout: '" + o.layout + "' is not available (tum, putk2, putk2-tum, icl-tum, icl-povray)");
     if (o.out.empty()) throw std::invalid_argument("--out is required");
     SensorModel sensor = sensor_by_name(o.sensor);
-    if (!o.camera.empty()) sensor = with_color_camera(sensor, camera_by_name_or_file(o.camera));
+    std::optional<CameraSpec> camera;
+    if (!o.camera.empty()) camera = camera_by_name_or_file(o.camera);
+    if (camera) sensor = with_color_camera(sensor, *camera);
     sensor.effects = parse_effects(o.effects);
     if (!o.blur) sensor.effects.motion_blur = false;
     const Paths paths = load_paths(o, sensor);
@@ -233,6 +236,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     for (const auto& c : paths.camera) poses.push_back(c.isometry());
     OfficeOptions office;
     office.seed = o.seed;
+    if (camera && camera->min_room_m > 0) office.min_room = camera->min_room_m;
     const Eigen::Isometry3d to_office = office_from_world(poses, office.floor_z);
     for (auto& p : poses) p = to_office * p;
     const Scene scene = build_office(poses, office);
@@ -355,6 +359,8 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"depth_units_per_metre", putk2 ? 1000 : 5000},
                               {"exposure_s", sensor.exposure_s},
                               {"disparity_distortion_px", sensor.disparity_distortion_px},
+                              {"shadow_fill_px", sensor.shadow_fill_px},
+                              {"min_room_m", office.min_room},
                               {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
                               {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
                               {"room_boxes", scene.boxes.size()}};
