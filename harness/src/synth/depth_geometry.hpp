@@ -119,9 +119,10 @@ IcpConditioning icp_conditioning(const cv::Mat& depth_m, const DepthRays& rays);
 
 // The projector's shadow as the depth shows it. Along every second row, each step from a nearer to a
 // farther surface (left to right, over 5 % of the nearer range) either meets the farther one directly or
-// across a hole of up to 30 px; its geometric shadow is f·b·(1/z_near − 1/z_far) pixels (`fx` the
-// registered image's focal length, `baseline_m` the projector's distance from the camera that sees the
-// pattern). A Kinect v1 casts its shadow on that side in TUM's registered depth (projector at −x).
+// across a hole of up to 30 px; its geometric shadow is f·b·(1/z_near − 1/z_far) pixels (`fx` the depth
+// image's focal length, `baseline_m` the projector's distance from the camera whose image the depth is
+// in: for depth registered to colour, the colour camera). A Kinect v1 casts its shadow on that side in
+// TUM's registered depth (projector at −x).
 struct ShadowStep {
     double predicted_px = 0;  // geometric shadow width
     int hole_px = 0;          // width of the hole beside the step (0: none)

@@ -4,6 +4,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/sensor_model.hpp"
 #include "synth/stamp_latency.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
@@ -308,12 +309,14 @@ void measure_timing(const std::filesystem::path& folder, const std::vector<tum::
     }
 }
 
-// How much of the projector's geometric shadow the depth shows as a hole (depth_geometry.hpp), with
-// Kinect v1's projector–IR baseline: of the steps whose shadow would be 4–16 px, the share that show
-// none, and the hole's median width where it would be 8–40 px.
+// How much of the projector's geometric shadow the depth shows as a hole (depth_geometry.hpp): of the
+// steps whose shadow would be 4–16 px, the share that show none, and the hole's median width where it
+// would be 8–40 px. The depth is registered to the colour camera, so the shadow's width is the
+// parallax between the projector and the colour camera (Kinect v1: 5 cm; the projector–IR baseline,
+// 7.5 cm, less the colour camera's 2.5 cm from the IR one), not the projector–IR baseline.
 void measure_shadow_steps(const cv::Mat& depth_m, double fx, Accumulator& acc) {
-    constexpr double kKinect1Baseline = 0.075;  // metres (sensor_model.hpp)
-    for (const ShadowStep& s : projector_shadow_steps(depth_m, fx, kKinect1Baseline)) {
+    static const double projector_to_color_m = std::abs(kinect1().projector_in_color.x());
+    for (const ShadowStep& s : projector_shadow_steps(depth_m, fx, projector_to_color_m)) {
         if (s.predicted_px >= 4 && s.predicted_px < 16)
             acc.ratio("shadow.no_hole_4_16px", "depth steps with a 4–16 px projector shadow that show no hole", s.hole_px == 0 ? 1 : 0, 1);
         if (s.predicted_px >= 8 && s.predicted_px < 40)

@@ -62,11 +62,11 @@ SensorModel kinect1() {
     s.dropout_blob_m = 0.10;
     s.glancing_limit_deg = 75.0;
     // The projector's shadow is narrower in the real depth than its geometry (`synth stats --camera`,
-    // depth_geometry.hpp): of the depth steps whose shadow would be 4–16 px wide, 49 % show no hole in
-    // fr1/rpy (fr1/desk 31 %), and where it would be 8–40 px the hole is 2 px wide (median; fr1/desk
-    // 4 px). The geometric shadow left 4–36 % and 7–12 px; the occluder's depth run 6 px into it
-    // gives 43–70 % and 2–5 px over ten offices, and 5.4–7.8 % of the valid depth within 2 px of a hole
-    // (real 5.6 %; 7.1–9.0 % before).
+    // depth_geometry.hpp): of the depth steps whose shadow would be 4–16 px wide, 34 % show no hole in
+    // fr1/rpy (fr1/desk 11 %), and where it would be 8–40 px the hole is 3 px wide (median; fr1/desk
+    // 5 px). The geometric shadow leaves 13 % and 11 px (office 1); the occluder's depth run 6 px into
+    // it gives 28–48 % and 4–5 px over ten offices, between the two real sequences, and 5.4–7.8 % of
+    // the valid depth within 2 px of a hole (real 5.6 %; 7.1–9.0 % before).
     s.shadow_fill_px = 6;
     // The registered depth border, measured on the missing-depth maps of TUM fr1 (rpy and desk agree):
     // 40 columns on the right and 34 rows at the top never measured, 3 rows at the bottom; on the left a
