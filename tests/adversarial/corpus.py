@@ -368,9 +368,9 @@ def synth_inputs(args, w):
         refused(f"stats --camera on a folder whose groundtruth.txt has a {name.replace('_', ' ')}",
                 ["synth", "stats", b, "--camera", "putk2-kinect1"], re.escape(os.path.join(b, "groundtruth.txt")) + r":1")
     # The projector-shadow statistics on depth that has no steps at all (every pixel a hole) and on depth
-    # that is nothing but steps (a comb of 1-px columns at 1 m and 1.3 m with 1-px holes): the first leaves
+    # that is nothing but steps (a comb of 1-px columns at 1 m and 2 m with 1-px holes): the first leaves
     # them out (null, no made-up share), the second gives shares within [0, 1] and finite widths.
-    for name, value in {"all_holes": lambda u, v: 0, "comb": lambda u, v: (0, 5000, 0, 6500)[u % 4]}.items():
+    for name, value in {"all_holes": lambda u, v: 0, "comb": lambda u, v: (0, 5000, 0, 10000)[u % 4]}.items():
         b = os.path.join(d, "stats_shadow_" + name)
         shutil.copytree(good, b)
         for line in open(os.path.join(b, "depth.txt")):
