@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 
 namespace vobench::synth {
 
@@ -142,6 +143,17 @@ namespace {
 // desk's depth.
 constexpr double kDeskReach = 1.3;
 
+// Where a camera's central ray meets the horizontal plane z = height (z down); none when the camera
+// looks level or up (less than about 12° down) or stands below the plane.
+std::optional<Eigen::Vector3d> gaze_at_height(const Eigen::Isometry3d& pose, double height) {
+    const Eigen::Vector3d at = pose.translation(), dir = pose.linear().col(2);
+    if (dir.z() < 0.2 || at.z() >= height) return std::nullopt;
+    return at + dir * ((height - at.z()) / dir.z());
+}
+
+// Distance in the floor plane between two points.
+double floor_distance(const Eigen::Vector3d& a, const Eigen::Vector3d& b) { return std::hypot(a.x() - b.x(), a.y() - b.y()); }
+
 // Distance in the floor plane from (x, y) to the box's footprint.
 double footprint_distance(const Box& b, double x, double y) {
     const double dx = std::max({b.min.x() - x, 0.0, x - b.max.x()});
@@ -263,22 +275,20 @@ Scene build_office(const std::vector<Eigen::Isometry3d>& poses, const OfficeOpti
     // the camera's holder stands at. The nearest look-at points first: the desk a camera is held over
     // is the one under its steepest views; a view that meets desk height further away looks past it
     // (across the room, as fr1/rpy's fast turns do), and gets no desk in its way.
-    std::vector<std::size_t> looked_at;
-    for (std::size_t k = 0; k < poses.size(); k += 10) looked_at.push_back(k);
-    const auto reach_at_desk_height = [&](std::size_t k) {
-        const Eigen::Vector3d at = poses[k].translation(), dir = poses[k].linear().col(2);
-        const double top = floor - 0.74;
-        if (dir.z() < 0.2 || at.z() >= top) return std::numeric_limits<double>::infinity();
-        return std::hypot(dir.x(), dir.y()) * (top - at.z()) / dir.z();
-    };
-    std::stable_sort(looked_at.begin(), looked_at.end(),
-                     [&](std::size_t a, std::size_t b) { return reach_at_desk_height(a) < reach_at_desk_height(b); });
-    for (std::size_t k : looked_at) {
+    std::vector<std::pair<double, std::size_t>> looked_at;  // (reach at a mid desk height, pose)
+    for (std::size_t k = 0; k < poses.size(); k += 10) {
+        const auto gaze = gaze_at_height(poses[k], floor - 0.74);
+        looked_at.emplace_back(gaze ? floor_distance(*gaze, poses[k].translation()) : std::numeric_limits<double>::infinity(), k);
+    }
+    std::stable_sort(looked_at.begin(), looked_at.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    for (const auto& entry : looked_at) {
+        const std::size_t k = entry.second;
         const Eigen::Vector3d at = poses[k].translation(), dir = poses[k].linear().col(2);
         const double desk_h = r.uniform(0.72, 0.76), top = floor - desk_h;
-        if (dir.z() < 0.2 || at.z() >= top) continue;  // looking level or up, or below desk height
-        const Eigen::Vector3d hit = at + dir * ((top - at.z()) / dir.z());
-        const double reach = std::hypot(hit.x() - at.x(), hit.y() - at.y());
+        const auto gaze = gaze_at_height(poses[k], top);
+        if (!gaze) continue;
+        const Eigen::Vector3d hit = *gaze;
+        const double reach = floor_distance(hit, at);
         if (reach < 0.3 || reach > kDeskReach) continue;
         // The long side across the view, snapped to the room's axes.
         const bool long_x = std::abs(dir.y()) >= std::abs(dir.x());
