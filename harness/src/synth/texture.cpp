@@ -8,22 +8,30 @@
 namespace vobench::synth {
 namespace {
 
-// How much of a feature of size `size` survives a footprint: 1 when well resolved, 0 below Nyquist.
-float visibility(double size, double footprint) {
-    const double r = size / (2.0 * footprint);
-    return static_cast<float>(std::clamp((r - 0.5) / 1.0, 0.0, 1.0));
-}
+// How much of a feature survives, from how many footprints half its size spans: 1 when well
+// resolved, 0 below Nyquist.
+float resolved_share(double half_size_in_footprints) { return static_cast<float>(std::clamp(half_size_in_footprints - 0.5, 0.0, 1.0)); }
+
+// How much of a feature of size `size` survives a footprint.
+float visibility(double size, double footprint) { return resolved_share(size / (2.0 * footprint)); }
 
 // Fractal noise whose octaves are dropped as they fall below the footprint.
+// Octave k has the size base_size·2⁻ᵏ. Scaling by a power of two commutes with rounding, so the
+// lattice coordinates u / size = 2ᵏ·(u / base_size) and the resolution size / (2·footprint) =
+// 2⁻ᵏ·(base_size / (2·footprint)) are exactly what dividing in every octave gives: the divisions are
+// done once.
 double fbm(double u, double v, double base_size, int octaves, double footprint, uint64_t seed) {
-    double sum = 0, amp = 1, size = base_size, norm = 0;
+    double sum = 0, amp = 1, norm = 0;
+    double x = u / base_size, y = v / base_size, resolved = base_size / (2.0 * footprint);
     for (int k = 0; k < octaves; ++k) {
-        const float vis = visibility(size, footprint);
+        const float vis = resolved_share(resolved);  // visibility(size, footprint)
         if (vis <= 0) break;
-        sum += amp * vis * lattice_noise(u / size, v / size, seed + k);
+        sum += amp * vis * lattice_noise(x, y, seed + k);
         norm += amp;
         amp *= 0.55;
-        size *= 0.5;
+        x *= 2.0;
+        y *= 2.0;
+        resolved *= 0.5;
     }
     return norm > 0 ? sum / norm : 0.0;
 }
