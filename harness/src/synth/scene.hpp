@@ -29,7 +29,8 @@ struct Box {
 struct Hit {
     double t = 0;  // distance along the (unit) ray
     Eigen::Vector3d point;
-    Eigen::Vector3d normal;  // facing the ray origin
+    Eigen::Vector3d normal;  // facing the ray origin: ±1 on `axis`, 0 on the other two
+    int axis = 0;            // the normal's axis (every surface is a face of an axis-aligned box)
     int material = -1;
     double u = 0, v = 0;  // surface coordinates, metres
 };
