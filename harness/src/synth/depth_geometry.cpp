@@ -68,9 +68,7 @@ void require_camera_size(const std::filesystem::path& depth_path, const cv::Mat&
 DepthRays::DepthRays(const PinholeCamera& camera) : camera_(camera) {
     if (camera.width <= 0 || camera.height <= 0 || !(camera.fx > 0) || !(camera.fy > 0))
         throw std::invalid_argument("depth geometry: the camera has no valid size or focal length");
-    const Renderer::RayMap map = Renderer::make_ray_map(camera);
-    rays_.reserve(map.dirs.size());
-    for (const Eigen::Vector3d& d : map.dirs) rays_.push_back(d / d.z());
+    rays_ = Renderer::make_ray_map(camera).on_plane;
 }
 
 namespace {

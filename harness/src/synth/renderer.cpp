@@ -47,7 +47,11 @@ Renderer::RayMap Renderer::make_ray_map(const PinholeCamera& c) {
     cv::undistortPoints(pixels, normalised, K, cv::Mat(1, 8, CV_64F, const_cast<double*>(c.distortion.data())), cv::noArray(),
                         cv::noArray(), cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 20, 1e-9));
     map.dirs.reserve(normalised.size());
-    for (const auto& n : normalised) map.dirs.push_back(Eigen::Vector3d(n.x, n.y, 1.0).normalized());
+    map.on_plane.reserve(normalised.size());
+    for (const auto& n : normalised) {
+        map.dirs.push_back(Eigen::Vector3d(n.x, n.y, 1.0).normalized());
+        map.on_plane.push_back(map.dirs.back() / map.dirs.back().z());
+    }
     return map;
 }
 
@@ -155,8 +159,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
         blurred = cv::Mat(H, W, CV_32FC3);
         tbb::parallel_for(0, H, [&](int v) {
             for (int u = 0; u < W; ++u) {
-                const Eigen::Vector3d X = color_rays_.dirs[static_cast<std::size_t>(v) * W + u] /
-                                          color_rays_.dirs[static_cast<std::size_t>(v) * W + u].z() * range.at<double>(v, u);
+                const Eigen::Vector3d X = color_rays_.on_plane[static_cast<std::size_t>(v) * W + u] * range.at<double>(v, u);
                 const Eigen::Vector3d a = start * X, b = end * X;
                 if (a.z() <= 0.05 || b.z() <= 0.05) {
                     blurred.at<cv::Vec3f>(v, u) = linear.at<cv::Vec3f>(v, u);

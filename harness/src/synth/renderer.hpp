@@ -58,7 +58,8 @@ public:
     // measures depth with, so a rendering is measured along the rays it was cast on).
     struct RayMap {
         int width = 0, height = 0;
-        std::vector<Eigen::Vector3d> dirs;  // unit ray direction per pixel, camera frame
+        std::vector<Eigen::Vector3d> dirs;      // unit ray direction per pixel, camera frame
+        std::vector<Eigen::Vector3d> on_plane;  // the same rays scaled to z = 1 (dirs / dirs.z())
     };
     static RayMap make_ray_map(const PinholeCamera& camera);
 
