@@ -52,19 +52,32 @@ inline double gaussian_fast(uint64_t h) {
 // block of the textures and of the blobs in which depth returns get lost.
 inline double smoothstep01(double t) { return t * t * (3.0 - 2.0 * t); }
 
-inline double lattice_noise(double x, double y, uint64_t seed) {
-    const double fx = std::floor(x), fy = std::floor(y);
-    const int64_t ix = static_cast<int64_t>(fx), iy = static_cast<int64_t>(fy);
-    // One mixing round per lattice corner (large odd multipliers keep neighbouring corners apart).
+// The values at the four corners of lattice cell (ix, iy), in [-1, 1]: one mixing round per corner
+// (large odd multipliers keep neighbouring corners apart).
+struct LatticeCell {
+    double c00, c10, c01, c11;  // at (ix, iy), (ix + 1, iy), (ix, iy + 1), (ix + 1, iy + 1)
+};
+
+inline LatticeCell lattice_cell(int64_t ix, int64_t iy, uint64_t seed) {
     auto corner = [&](int64_t a, int64_t b) {
         return 2.0 * uniform(mix64(seed ^ (static_cast<uint64_t>(a) * 0x9e3779b97f4a7c15ull) ^
                                    (static_cast<uint64_t>(b) * 0xc2b2ae3d27d4eb4full))) -
                1.0;
     };
-    const double tx = smoothstep01(x - fx), ty = smoothstep01(y - fy);
-    const double top = corner(ix, iy) + tx * (corner(ix + 1, iy) - corner(ix, iy));
-    const double bottom = corner(ix, iy + 1) + tx * (corner(ix + 1, iy + 1) - corner(ix, iy + 1));
+    return {corner(ix, iy), corner(ix + 1, iy), corner(ix, iy + 1), corner(ix + 1, iy + 1)};
+}
+
+// The cell's corner values interpolated at the fractions (tx, ty) of the way across it, smoothly.
+inline double lattice_interpolate(const LatticeCell& c, double fraction_x, double fraction_y) {
+    const double tx = smoothstep01(fraction_x), ty = smoothstep01(fraction_y);
+    const double top = c.c00 + tx * (c.c10 - c.c00);
+    const double bottom = c.c01 + tx * (c.c11 - c.c01);
     return top + ty * (bottom - top);
+}
+
+inline double lattice_noise(double x, double y, uint64_t seed) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    return lattice_interpolate(lattice_cell(static_cast<int64_t>(fx), static_cast<int64_t>(fy), seed), x - fx, y - fy);
 }
 
 }  // namespace vobench::synth
