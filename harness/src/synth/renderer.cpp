@@ -20,17 +20,31 @@ namespace {
 // which auto-exposure already brings the rendered frames to, so the stretch leaves the mean in place.
 constexpr double kTonePivot = 136.0 / 255.0;
 
-double srgb(double linear) {
-    static const std::vector<double> table = [] {
-        std::vector<double> t(4097);
-        for (std::size_t i = 0; i < t.size(); ++i) {
-            const double l = static_cast<double>(i) / 4096.0;
-            t[i] = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
-        }
-        return t;
-    }();
-    return table[static_cast<std::size_t>(std::clamp(linear, 0.0, 1.0) * 4096.0 + 0.5)];
-}
+// Built once, before main: the tone pass reads it for every channel of every pixel.
+const std::vector<double> srgb_table = [] {
+    std::vector<double> t(4097);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        const double l = static_cast<double>(i) / 4096.0;
+        t[i] = l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(l, 1.0 / 2.4) - 0.055;
+    }
+    return t;
+}();
+
+double srgb(double linear) { return srgb_table[static_cast<std::size_t>(std::clamp(linear, 0.0, 1.0) * 4096.0 + 0.5)]; }
+
+// The motion blur's samples along a streak: at most this many, at the fractions k / (n − 1) of its
+// length, tabulated once (each entry is the quotient the division gives; a division per sample was
+// a fifth of the blur's time).
+constexpr int kMaxBlurSamples = 24;
+struct BlurFractions {
+    double table[kMaxBlurSamples + 1][kMaxBlurSamples] = {};
+    BlurFractions() {
+        for (int n = 2; n <= kMaxBlurSamples; ++n)
+            for (int k = 0; k < n; ++k) table[n][k] = static_cast<double>(k) / (n - 1);
+    }
+    const double* operator[](int n) const { return table[n]; }
+};
+const BlurFractions blur_fractions;
 
 }  // namespace
 
@@ -176,11 +190,16 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
                 const Eigen::Vector2d fb(sensor_.color.fx * b.x() / b.z(), sensor_.color.fy * b.y() / b.z());
                 const Eigen::Vector2d half = 0.5 * (fb - fa);
                 const Eigen::Vector2d pa = Eigen::Vector2d(u, v) - half, pb = Eigen::Vector2d(u, v) + half;
-                const int samples = std::clamp(static_cast<int>(std::ceil((pb - pa).norm())) + 1, 1, 24);
+                const int samples = std::clamp(static_cast<int>(std::ceil((pb - pa).norm())) + 1, 1, kMaxBlurSamples);
+                if (samples == 1) {
+                    blurred.at<cv::Vec3f>(v, u) = linear.at<cv::Vec3f>(v, u);
+                    continue;
+                }
+                const Eigen::Vector2d path = pb - pa;
+                const double* fractions = blur_fractions[samples];
                 cv::Vec3f sum(0, 0, 0);
                 for (int k = 0; k < samples; ++k) {
-                    const Eigen::Vector2d p =
-                        samples == 1 ? Eigen::Vector2d(u, v) : pa + (pb - pa) * (static_cast<double>(k) / (samples - 1));
+                    const Eigen::Vector2d p = pa + path * fractions[k];
                     const int x = std::clamp(static_cast<int>(p.x() + 0.5), 0, W - 1);
                     const int y = std::clamp(static_cast<int>(p.y() + 0.5), 0, H - 1);
                     sum += linear.at<cv::Vec3f>(y, x);
@@ -202,20 +221,27 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     const double contrast = fx.tone_curve ? sensor_.tone_contrast : 1.0;
     out.color.create(H, W, CV_8UC3);
     const HashStream color_noise(seed_, kColorNoise, frame);
+    const bool stretch = contrast != 1.0;
+    std::vector<double> du2(static_cast<std::size_t>(W));  // (u − cx)², per column
+    for (int u = 0; u < W; ++u) du2[static_cast<std::size_t>(u)] = (u - sensor_.color.cx) * (u - sensor_.color.cx);
     tbb::parallel_for(0, H, [&](int v) {
-        for (int u = 0; u < W; ++u) {
-            const double du = u - sensor_.color.cx, dv = v - sensor_.color.cy;
-            const float fall_off = static_cast<float>(1.0 - vignetting * std::min(1.0, (du * du + dv * dv) / half_diagonal2));
-            const cv::Vec3f c = blurred.at<cv::Vec3f>(v, u) * fall_off;
-            cv::Vec3b& px = out.color.at<cv::Vec3b>(v, u);
+        const double dv = v - sensor_.color.cy, dv2 = dv * dv;
+        const cv::Vec3f* in = blurred.ptr<cv::Vec3f>(v);
+        uint8_t* px = out.color.ptr<uint8_t>(v);
+        const uint64_t row_index = static_cast<uint64_t>(v) * W * 3;
+        for (int u = 0; u < W; ++u, px += 3) {
+            const float fall_off =
+                static_cast<float>(1.0 - vignetting * std::min(1.0, (du2[static_cast<std::size_t>(u)] + dv2) / half_diagonal2));
+            const cv::Vec3f c = in[u] * fall_off;
             for (int ch = 0; ch < 3; ++ch) {
                 const double noise =
-                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise((static_cast<uint64_t>(v) * W + u) * 3 + ch)) : 0.0;
+                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise(row_index + static_cast<uint64_t>(u) * 3 + ch)) : 0.0;
                 // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
                 // measured on the real images, tone curve and all).
                 const double y = srgb(c[ch]);
-                const double display = contrast == 1.0 ? y : std::clamp(kTonePivot + contrast * (y - kTonePivot), 0.0, 1.0);
-                px[ch] = cv::saturate_cast<uint8_t>(255.0 * display + noise);
+                const double display = stretch ? std::clamp(kTonePivot + contrast * (y - kTonePivot), 0.0, 1.0) : y;
+                // saturate_cast<uint8_t> without its branches: the same rounding, then the same clamp.
+                px[ch] = static_cast<uint8_t>(std::clamp(cvRound(255.0 * display + noise), 0, 255));
             }
         }
     });
