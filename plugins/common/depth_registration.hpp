@@ -35,7 +35,8 @@ public:
                       cv::Size depth_size, cv::Size color_size);
 
     // `depth`: CV_32FC1 metres of depth_size in the (undistorted pinhole) depth camera; 0 = no reading.
-    // Returns CV_32FC1 metres of color_size; 0 where nothing projects.
+    // Returns CV_32FC1 metres of color_size; 0 where nothing projects. Runs on OpenCV's threads
+    // (cv::setNumThreads bounds them); the result does not depend on how many there are.
     cv::Mat operator()(const cv::Mat& depth) const;
 
 private:
@@ -45,9 +46,5 @@ private:
     double half_ = 0;                    // half the side of a depth pixel's square at the depth camera, colour px
     std::vector<Eigen::Vector3d> rays_;  // R · ((u − cx)/fx, (v − cy)/fy, 1), row-major over the depth image
 };
-
-// One frame with a registration made for it (the generator's use: one call per frame and camera).
-cv::Mat register_depth(const cv::Mat& depth, const Intrinsics& depth_camera, const Intrinsics& color_camera,
-                       const Eigen::Isometry3d& color_from_depth, cv::Size color_size);
 
 }  // namespace vobench::rgbd

@@ -75,7 +75,11 @@ Renderer::RayMap Renderer::make_ray_map(const PinholeCamera& c) {
 }
 
 Renderer::Renderer(const Scene& scene, const SensorModel& sensor, uint64_t seed)
-    : scene_(scene), sensor_(sensor), seed_(seed), color_rays_(make_ray_map(sensor.color)), depth_rays_(make_ray_map(sensor.depth)) {}
+    : scene_(scene), sensor_(sensor), seed_(seed), color_rays_(make_ray_map(sensor.color)), depth_rays_(make_ray_map(sensor.depth)) {
+    if (sensor.principle == DepthPrinciple::TimeOfFlight)
+        registration_.emplace(intrinsics_of(sensor.depth), intrinsics_of(sensor.color), sensor.depth_in_color,
+                              cv::Size(sensor.depth.width, sensor.depth.height), cv::Size(sensor.color.width, sensor.color.height));
+}
 
 std::vector<Eigen::Isometry3d> Renderer::row_poses(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double interval_s,
                                                    double readout_s, int rows) {

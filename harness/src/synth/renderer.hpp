@@ -13,6 +13,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <optional>
 #include <vector>
 
 namespace vobench::synth {
@@ -95,6 +96,7 @@ private:
     SensorModel sensor_;
     uint64_t seed_;
     RayMap color_rays_, depth_rays_;
+    std::optional<rgbd::DepthRegistration> registration_;  // time of flight: depth to colour, set up once
 };
 
 // The registration library's view of a camera.

@@ -260,8 +260,7 @@ void Renderer::render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f
         });
     }
     // To the 1920×1080 colour camera, z-buffered splats (see plugins/common/depth_registration.hpp).
-    out.depth = rgbd::register_depth(out.depth_native, intrinsics_of(sensor_.depth), intrinsics_of(sensor_.color), sensor_.depth_in_color,
-                                     cv::Size(sensor_.color.width, sensor_.color.height));
+    out.depth = (*registration_)(out.depth_native);
 }
 
 }  // namespace vobench::synth
