@@ -201,6 +201,8 @@ void run_decode_real(benchmark::State& state, bool own) {
     }
 }
 
+// The registration alone on OpenCV's threads: state.range(0) of them (the sweep's cells run with
+// limits.threads, 1 by default; `vobench synth` with all).
 void run_registration(benchmark::State& state) {
     const fs::path dir = synthetic("reader-kinect2-putk2", "kinect2", "putk2", 10);
     cv::Mat metres;
@@ -209,7 +211,10 @@ void run_registration(benchmark::State& state) {
     Eigen::Isometry3d color_from_depth = Eigen::Isometry3d::Identity();
     color_from_depth.translation() = Eigen::Vector3d(0.052, 0, 0);
     const rgbd::DepthRegistration registration(d, c, color_from_depth, metres.size(), cv::Size(1920, 1080));
+    const int threads = cv::getNumThreads();
+    cv::setNumThreads(static_cast<int>(state.range(0)));
     for (auto _ : state) benchmark::DoNotOptimize(registration(metres).data);
+    cv::setNumThreads(threads);
 }
 
 // The same frames from the decoded-frame cache (zstd) instead of the reader.
@@ -246,7 +251,7 @@ BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_depth, "depth")->Unit
 BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_depth, "depth own")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, opencv_imread / tum_fr1_640x480_both, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, readers_png / tum_fr1_640x480_both, true)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK(run_registration)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(run_registration)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect2_1920x1080, "put_vo", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
