@@ -87,41 +87,87 @@ Eigen::Vector3f pages(const Material& m, double u, double v, double footprint) {
     return ink ? mix(m.base * 0.8f, Eigen::Vector3f(0.08f, 0.08f, 0.1f), vis) : mix(m.base, m.base * 0.8f, 1.0f - vis);
 }
 
+// The last pattern cell a thread looked up, one slot per kind of cell: a cell of the posters and
+// marks is 12 cm wide, tens to hundreds of pixels of a row, and its values depend on (seed, cu, cv)
+// alone, so a hit gives the very values its hashing would.
+template <typename Cell, Cell (*make)(uint64_t, int64_t, int64_t)>
+const Cell& cached_cell(uint64_t seed, int64_t cu, int64_t cv) {
+    struct Slot {
+        bool filled = false;
+        uint64_t seed = 0;
+        int64_t cu = 0, cv = 0;
+        Cell cell{};
+    };
+    thread_local Slot slot;
+    if (!slot.filled || slot.seed != seed || slot.cu != cu || slot.cv != cv) slot = {true, seed, cu, cv, make(seed, cu, cv)};
+    return slot.cell;
+}
+
+// A poster cell: its colour and which of three shapes it holds.
+struct PosterCell {
+    Eigen::Vector3f colour{0, 0, 0};
+    uint64_t shape = 0;
+};
+
+PosterCell poster_cell(uint64_t seed, int64_t cu, int64_t cv) {
+    const uint64_t h = hash(seed, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
+    return {
+        Eigen::Vector3f(static_cast<float>(uniform(h)), static_cast<float>(uniform(mix64(h))), static_cast<float>(uniform(mix64(h + 1)))),
+        h % 3};
+}
+
 Eigen::Vector3f poster(const Material& m, double u, double v, double footprint) {
     // Cells of 12 cm, each with a coloured disc or bar on a light ground; large shapes, sharp corners.
     const double cell = 0.12 * m.scale;
     const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
-    const uint64_t h = hash(m.seed, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
+    const PosterCell& c = cached_cell<PosterCell, poster_cell>(m.seed, cu, cv);
     const double lu = u / cell - static_cast<double>(cu) - 0.5, lv = v / cell - static_cast<double>(cv) - 0.5;
-    const Eigen::Vector3f colour(static_cast<float>(uniform(h)), static_cast<float>(uniform(mix64(h))),
-                                 static_cast<float>(uniform(mix64(h + 1))));
     const float vis = visibility(cell * 0.5, footprint);
     bool inside;
-    switch (h % 3) {
+    switch (c.shape) {
         case 0: inside = lu * lu + lv * lv < 0.12; break;
         case 1: inside = std::abs(lu) < 0.4 && std::abs(lv) < 0.15; break;
         default: inside = std::abs(lu) < 0.2 && std::abs(lv) < 0.35; break;
     }
     const Eigen::Vector3f ground = m.base;
-    const Eigen::Vector3f mean = 0.75f * ground + 0.25f * colour;
-    return mix(mean, inside ? colour : ground, vis);
+    const Eigen::Vector3f mean = 0.75f * ground + 0.25f * c.colour;
+    return mix(mean, inside ? c.colour : ground, vis);
 }
 
 // Small rectangles (2–7 cm) scattered on a 12 cm lattice, 65 % of the cells occupied; dark or light.
+constexpr double kMarkCell = 0.12;
+
+// A cell's mark: its size, its offset in the cell and its shade (none in an empty cell).
+struct MarkCell {
+    bool occupied = false;
+    double w = 0, hgt = 0, ou = 0, ov = 0;
+    float shade = 1;
+};
+
+MarkCell mark_cell(uint64_t seed, int64_t cu, int64_t cv) {
+    const uint64_t h = hash(seed ^ 0x5bd1e995ull, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
+    MarkCell c;
+    if (uniform(h) < 0.35) return c;
+    c.occupied = true;
+    c.w = 0.02 + 0.05 * uniform(mix64(h + 1));
+    c.hgt = 0.02 + 0.05 * uniform(mix64(h + 2));
+    c.ou = (kMarkCell - c.w) * uniform(mix64(h + 3));
+    c.ov = (kMarkCell - c.hgt) * uniform(mix64(h + 4));
+    c.shade = uniform(mix64(h + 5)) < 0.6 ? 0.25f : 1.6f;
+    return c;
+}
+
 Eigen::Vector3f marks(const Material& m, double u, double v, double footprint, const Eigen::Vector3f& ground) {
-    const double cell = 0.12;
+    const double cell = kMarkCell;
     const int64_t cu = static_cast<int64_t>(std::floor(u / cell)), cv = static_cast<int64_t>(std::floor(v / cell));
-    const uint64_t h = hash(m.seed ^ 0x5bd1e995ull, static_cast<uint64_t>(cu), static_cast<uint64_t>(cv));
-    if (uniform(h) < 0.35) return ground;
-    const double w = 0.02 + 0.05 * uniform(mix64(h + 1)), hgt = 0.02 + 0.05 * uniform(mix64(h + 2));
-    const double ou = (cell - w) * uniform(mix64(h + 3)), ov = (cell - hgt) * uniform(mix64(h + 4));
-    const double lu = u - static_cast<double>(cu) * cell - ou, lv = v - static_cast<double>(cv) * cell - ov;
-    const float vis = visibility(std::min(w, hgt), footprint);
-    const float shade = uniform(mix64(h + 5)) < 0.6 ? 0.25f : 1.6f;
-    const Eigen::Vector3f mark = (ground * shade).cwiseMin(Eigen::Vector3f::Ones());
-    const float area = static_cast<float>(w * hgt / (cell * cell));
+    const MarkCell& c = cached_cell<MarkCell, mark_cell>(m.seed, cu, cv);
+    if (!c.occupied) return ground;
+    const double lu = u - static_cast<double>(cu) * cell - c.ou, lv = v - static_cast<double>(cv) * cell - c.ov;
+    const float vis = visibility(std::min(c.w, c.hgt), footprint);
+    const Eigen::Vector3f mark = (ground * c.shade).cwiseMin(Eigen::Vector3f::Ones());
+    const float area = static_cast<float>(c.w * c.hgt / (cell * cell));
     const Eigen::Vector3f mean = ground + (mark - ground) * area;  // what a blurred view averages to
-    const bool inside = lu >= 0 && lu < w && lv >= 0 && lv < hgt;
+    const bool inside = lu >= 0 && lu < c.w && lv >= 0 && lv < c.hgt;
     return mix(mean, inside ? mark : ground, vis);
 }
 
