@@ -103,6 +103,24 @@ const Cell& cached_cell(uint64_t seed, int64_t cu, int64_t cv) {
     return slot.cell;
 }
 
+// The hash key of the cell holding x (in cells) for the tiles and keys: floor(x) + 10⁵, as an
+// unsigned integer (kept in an int64_t's bits for cached_cell).
+int64_t lattice_key(double x) { return static_cast<int64_t>(static_cast<uint64_t>(std::floor(x) + 1e5)); }
+
+// A tile's own shade, and whether a key carries a legend.
+struct TileCell {
+    float shade = 1;
+};
+TileCell tile_cell(uint64_t seed, int64_t a, int64_t b) {
+    return {0.85f + 0.3f * static_cast<float>(uniform(hash(seed, static_cast<uint64_t>(a), static_cast<uint64_t>(b))))};
+}
+struct KeyCell {
+    bool labelled = false;
+};
+KeyCell key_cell(uint64_t seed, int64_t a, int64_t b) {
+    return {uniform(hash(seed, static_cast<uint64_t>(a), static_cast<uint64_t>(b))) < 0.8};
+}
+
 // A poster cell: its colour and which of three shapes it holds.
 struct PosterCell {
     Eigen::Vector3f colour{0, 0, 0};
@@ -194,8 +212,8 @@ Eigen::Vector3f keys(const Material& m, double u, double v, double footprint) {
     const double fu = u / pitch - std::floor(u / pitch), fv = v / pitch - std::floor(v / pitch);
     const float vis = visibility(0.004, footprint);
     const bool gap = fu < 0.16 || fv < 0.16;
-    const uint64_t h = hash(m.seed, static_cast<uint64_t>(std::floor(u / pitch) + 1e5), static_cast<uint64_t>(std::floor(v / pitch) + 1e5));
-    const bool legend = !gap && std::abs(fu - 0.55) < 0.12 && std::abs(fv - 0.5) < 0.16 && uniform(h) < 0.8;
+    const bool labelled = cached_cell<KeyCell, key_cell>(m.seed, lattice_key(u / pitch), lattice_key(v / pitch)).labelled;
+    const bool legend = !gap && std::abs(fu - 0.55) < 0.12 && std::abs(fv - 0.5) < 0.16 && labelled;
     const Eigen::Vector3f key = legend ? m.accent : m.base;
     const Eigen::Vector3f mean = 0.75f * m.base + 0.2f * m.base * 0.4f + 0.05f * m.accent;
     return mix(mean, gap ? m.base * 0.4f : key, vis);
@@ -216,9 +234,8 @@ Eigen::Vector3f albedo(const Material& m, double u, double v, double footprint) 
             const double n = fbm(u, v, 0.3 * m.scale, 5, footprint, m.seed);
             const float line = std::max(grid_line(u, 0.5 * m.scale, 0.012, footprint), grid_line(v, 0.5 * m.scale, 0.012, footprint));
             // Each tile its own shade: corners where four tiles meet.
-            const uint64_t tile = hash(m.seed, static_cast<uint64_t>(std::floor(u / (0.5 * m.scale)) + 1e5),
-                                       static_cast<uint64_t>(std::floor(v / (0.5 * m.scale)) + 1e5));
-            const float shade = 0.85f + 0.3f * static_cast<float>(uniform(tile));
+            const float shade =
+                cached_cell<TileCell, tile_cell>(m.seed, lattice_key(u / (0.5 * m.scale)), lattice_key(v / (0.5 * m.scale))).shade;
             return mix(m.base * shade * static_cast<float>(1.0 + 0.25 * n), m.accent, line);
         }
         case TextureStyle::Wood: {
