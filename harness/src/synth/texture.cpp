@@ -19,7 +19,7 @@ float visibility(double size, double footprint) { return resolved_share(size / (
 // The corner values of the lattice cells a thread drew last, one slot per octave seed (mod 64): the
 // pixels of a row mostly fall in the cells their neighbours fell in (at a 1 mm footprint, the octaves'
 // cells are 9 mm to 60 cm wide), and a cell's corners depend on (seed, ix, iy) alone, so a hit gives
-// the very numbers that hashing them again would. 60 % of the fractal noise's time went to that hashing.
+// the very numbers that hashing them again would (Kinect v2: 2.5 % fewer instructions a frame).
 class CellCache {
 public:
     double noise(double x, double y, uint64_t seed) {
@@ -87,9 +87,9 @@ Eigen::Vector3f pages(const Material& m, double u, double v, double footprint) {
     return ink ? mix(m.base * 0.8f, Eigen::Vector3f(0.08f, 0.08f, 0.1f), vis) : mix(m.base, m.base * 0.8f, 1.0f - vis);
 }
 
-// The last pattern cell a thread looked up, one slot per kind of cell: a cell of the posters and
-// marks is 12 cm wide, tens to hundreds of pixels of a row, and its values depend on (seed, cu, cv)
-// alone, so a hit gives the very values its hashing would.
+// The last pattern cell a thread looked up, one slot per kind of cell: a cell of the marks and
+// posters is 12 cm wide, a tile 50 cm, a key 1.9 cm — many pixels of a row each — and its values
+// depend on (seed, cu, cv) alone, so a hit gives the very values its hashing would.
 template <typename Cell, Cell (*make)(uint64_t, int64_t, int64_t)>
 const Cell& cached_cell(uint64_t seed, int64_t cu, int64_t cv) {
     struct Slot {
