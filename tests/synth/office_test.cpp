@@ -1,6 +1,6 @@
-// The office where a camera is held over a desk (scene.cpp, desk_clutter.cpp): the desk under its gaze
+// The office where a camera is held over a desk (office.cpp, desk_clutter.cpp): the desk under its gaze
 // is a top on four legs, open beneath as real desks are, and the room is as large as the camera asks.
-#include "synth/scene.hpp"
+#include "synth/office.hpp"
 
 #include <catch2/catch.hpp>
 

@@ -2,7 +2,7 @@
 // single rays and against the slab test without Embree, in a generated office seen from its path.
 #include "synth/ray_index.hpp"
 #include "synth/frame_plan.hpp"
-#include "synth/scene.hpp"
+#include "synth/office.hpp"
 #include "synth/trajectory_families.hpp"
 
 #include <catch2/catch.hpp>

@@ -1,7 +1,7 @@
 #include "synth/sequence_writer.hpp"
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_catalog.hpp"
-#include "synth/scene.hpp"
+#include "synth/office.hpp"
 #include "synth/sensor_model.hpp"
 #include "test_support.hpp"
 

@@ -1,11 +1,9 @@
-// scene.hpp — the synthetic office: axis-aligned boxes in the PUTK² world frame.
+// scene.hpp — what the renderer sees: axis-aligned boxes with their materials, and point lights;
+// ray casting (through Embree, ray_index.hpp) and shading. office.hpp builds the office around a
+// trajectory.
 //
 // The world frame is that of PUTK²'s ground truth (the central ceiling camera's frame): x and y span
-// the floor, z points down, the ceiling cameras sit at z = 0. The floor is at z = floor_z. The room
-// is fitted around the trajectory (so real PUTK² ground truth can be rendered too), and furnished
-// with desks, shelves, cabinets, boxes, pillars and posters placed deterministically from a seed,
-// never closer than `clearance` to the path, so that the sensor always sees structure within its
-// 0.5–4.5 m range, as the PUTK² recording room was arranged.
+// the floor, z points down, the ceiling cameras sit at z = 0. The floor is at z = floor_z.
 #pragma once
 
 #include "synth/texture.hpp"
@@ -68,21 +66,5 @@ private:
     Hit hit_on(int box, int axis, bool positive_side, const Eigen::Vector3d& origin, const Eigen::Vector3d& dir, double t) const;
     std::shared_ptr<const RayIndex> index_;  // shared by copies of the scene
 };
-
-struct OfficeOptions {
-    uint64_t seed = 1;
-    double floor_z = 3.0;    // ceiling cameras 3 m above the floor
-    double clearance = 0.7;  // free radius around the path, metres
-    double margin = 1.1;     // mean distance from the path's bounding box to the walls, metres
-    double min_room = 6.0;   // the room is at least this wide and long, metres (a real office's size)
-};
-
-// `camera_poses`: the camera-to-world poses the sensors will take. Where a camera looks down (hand-held
-// over a desk, as in TUM's sequences), a desk with clutter is placed where its view meets desk height:
-// people point cameras at things. After walls and furniture, every
-// 5th pose is checked by casting a coarse fan of rays over the central field of view; where less than
-// half of them meet something within 0.5–4.3 m, a textured cabinet is added ahead (beside the path,
-// never within `clearance` of it), so the depth sensor always has structure in range.
-Scene build_office(const std::vector<Eigen::Isometry3d>& camera_poses, const OfficeOptions& options);
 
 }  // namespace vobench::synth

@@ -1,5 +1,5 @@
 // scene_random.hpp — the office builder's random choices: a counter-based stream (same seed, same
-// office) and the materials and colours drawn from it. Shared by scene.cpp and desk_clutter.cpp.
+// office) and the materials and colours drawn from it. Shared by office.cpp and desk_clutter.cpp.
 #pragma once
 
 #include "synth/random_field.hpp"

@@ -3,6 +3,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_catalog.hpp"
 #include "synth/frame_plan.hpp"
+#include "synth/office.hpp"
 #include "synth/renderer.hpp"
 #include "synth/trajectory_families.hpp"
 #include "util/files.hpp"
