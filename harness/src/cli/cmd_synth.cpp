@@ -9,7 +9,6 @@
 
 #include <spdlog/spdlog.h>
 
-#include <malloc.h>
 #include <unistd.h>
 #include <algorithm>
 #include <cmath>
@@ -22,19 +21,6 @@
 namespace vobench::cli {
 
 namespace {
-
-// Every frame allocates and frees the same few-megabyte images (linear colour, range, blur, depth,
-// PNG buffers). glibc hands blocks that large to mmap, or trims them off the heap when freed, so
-// each frame faulted its pages in afresh. Kept on the heap, they are reused: 40 Kinect v1 frames
-// took 72,346 page faults and 4.69 s of CPU before, 14,193 and 4.28 s after (perf stat, this
-// machine). Only this process's allocator policy changes (glibc caps the mmap threshold at
-// 32 MiB on 64-bit); the images are the same bytes.
-void keep_frame_buffers_allocated() {
-#ifdef __GLIBC__
-    mallopt(M_MMAP_THRESHOLD, 32 << 20);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
-#endif
-}
 
 // `vobench synth stats DIR…`: one column per folder, one row per statistic (frame_statistics.hpp).
 CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
@@ -237,7 +223,6 @@ void add_synth_command(CLI::App& app, int& exit_code) {
         o.out = out;
         o.stamps = stamps;
         const bool tty = isatty(fileno(stderr));
-        keep_frame_buffers_allocated();
         const auto report = synth::synthesize(o, [tty](uint64_t done, uint64_t total) {
             if (tty)
                 std::fprintf(stderr, "\rrendering %llu/%llu", static_cast<unsigned long long>(done),

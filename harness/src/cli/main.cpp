@@ -1,6 +1,7 @@
 // vobench — the command-line host. See `vobench --help`.
 #include "cli/app_setup.hpp"
 #include "cli/commands.hpp"
+#include "util/frame_memory.hpp"
 #include "util/subprocess.hpp"
 
 #include <vobench/vobench_plugin.h>
@@ -65,6 +66,7 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "vobench: cannot run %s: %s\n", worker.c_str(), std::strerror(errno));
         return 1;
     }
+    vobench::keep_frame_buffers_allocated();  // `track` reads frame after frame in this process
     own_stdout();
     CLI::App app{"vobench — a benchmark harness for RGB-D visual odometry"};
     app.require_subcommand(0, 1);

@@ -5,8 +5,10 @@
 #include "cli/app_setup.hpp"
 #include "cli/commands.hpp"
 #include "sweep/cell_runner.hpp"
+#include "util/frame_memory.hpp"
 
 int main(int argc, char** argv) {
+    vobench::keep_frame_buffers_allocated();  // both commands handle frame after frame
     CLI::App app{"vobench-worker — vobench's rendering and cell processes (run through vobench)"};
     app.require_subcommand(1, 1);
     vobench::cli::setup_logging(app);
