@@ -44,6 +44,18 @@ bool overlaps_any(const Scene& s, const Box& b) {
     return false;
 }
 
+// Sizes of the furniture kinds add_furniture() places, metres: [min, max) of width, depth, height.
+struct FurnitureSize {
+    double width[2], depth[2], height[2];
+};
+constexpr int kPillar = 4;                                                              // square, floor to ceiling: only its width is drawn
+constexpr FurnitureSize kFurnitureSizes[6] = {{{1.2, 1.6}, {0.6, 0.8}, {0.72, 0.78}},   // desk
+                                              {{0.8, 1.2}, {0.3, 0.45}, {1.6, 2.2}},    // shelf
+                                              {{0.4, 0.9}, {0.4, 0.6}, {0.6, 1.3}},     // cabinet
+                                              {{0.4, 0.7}, {0.4, 0.7}, {0.5, 1.1}},     // box stack
+                                              {{0.3, 0.5}, {0, 0}, {0, 0}},             // pillar
+                                              {{0.25, 0.6}, {0.25, 0.6}, {0.2, 0.6}}};  // box
+
 // The office, built in steps. Every step draws from the one stream `r_` and numbers materials from
 // `next_seed_`, so the steps' order (that of build()) is part of what a seed means: changing it
 // changes every office.
@@ -188,45 +200,18 @@ private:
         const int attempts = 400;
         for (int k = 0; k < attempts; ++k) {
             const int kind = r_.pick(6);  // desk, shelf, cabinet, box stack, pillar, box
-            double w, d, h;
-            switch (kind) {
-                case 0:
-                    w = r_.uniform(1.2, 1.6);
-                    d = r_.uniform(0.6, 0.8);
-                    h = r_.uniform(0.72, 0.78);
-                    break;
-                case 1:
-                    w = r_.uniform(0.8, 1.2);
-                    d = r_.uniform(0.3, 0.45);
-                    h = r_.uniform(1.6, 2.2);
-                    break;
-                case 2:
-                    w = r_.uniform(0.4, 0.9);
-                    d = r_.uniform(0.4, 0.6);
-                    h = r_.uniform(0.6, 1.3);
-                    break;
-                case 3:
-                    w = r_.uniform(0.4, 0.7);
-                    d = r_.uniform(0.4, 0.7);
-                    h = r_.uniform(0.5, 1.1);
-                    break;
-                case 4:
-                    w = r_.uniform(0.3, 0.5);
-                    d = w;
-                    h = floor_;
-                    break;
-                default:
-                    w = r_.uniform(0.25, 0.6);
-                    d = r_.uniform(0.25, 0.6);
-                    h = r_.uniform(0.2, 0.6);
-                    break;
-            }
+            // Width, depth and height drawn in that order from the kind's ranges; a pillar is square
+            // and reaches the ceiling.
+            const FurnitureSize& size = kFurnitureSizes[kind];
+            double w = r_.uniform(size.width[0], size.width[1]);
+            double d = kind == kPillar ? w : r_.uniform(size.depth[0], size.depth[1]);
+            const double h = kind == kPillar ? floor_ : r_.uniform(size.height[0], size.height[1]);
             // Shelves, cabinets and boxes against a wall, pillars free-standing, desks either (a coin): the
             // open floor of an office holds desks, so a view across the room meets desks and the far wall.
             double cx, cy;
             const bool swap = r_.uniform(0, 1) < 0.5;
             if (swap) std::swap(w, d);
-            const bool against_wall = kind != 4 && (r_.uniform(0, 1) < 0.5 || kind != 0);
+            const bool against_wall = kind != kPillar && (r_.uniform(0, 1) < 0.5 || kind != 0);
             if (against_wall) {
                 const int wall = r_.pick(4);
                 cx = wall == 0 ? x0_ + w / 2 : wall == 1 ? x1_ - w / 2 : r_.uniform(x0_ + w / 2, x1_ - w / 2);
@@ -238,10 +223,10 @@ private:
             Box b{Eigen::Vector3d(cx - w / 2, cy - d / 2, floor_ - h), Eigen::Vector3d(cx + w / 2, cy + d / 2, floor_), 0, false};
             if (!clear_of_path(b)) continue;
             if (overlaps_any(s_, b)) continue;
-            TextureStyle style = kind == 1   ? TextureStyle::Wood
-                                 : kind == 4 ? TextureStyle::Tiles
-                                 : kind == 2 ? TextureStyle::Tiles
-                                             : TextureStyle::Carpet;
+            TextureStyle style = kind == 1         ? TextureStyle::Wood
+                                 : kind == kPillar ? TextureStyle::Tiles
+                                 : kind == 2       ? TextureStyle::Tiles
+                                                   : TextureStyle::Carpet;
             if (kind == 0) {
                 build_desk(b, floor_ - h, floor_, r_, next_seed_, add_);
                 furnish_desk(b, floor_ - h, r_, next_seed_, add_);
