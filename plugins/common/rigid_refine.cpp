@@ -16,6 +16,16 @@ Eigen::Matrix3d point_covariance(const Eigen::Vector3d& x, const PointNoise& n) 
     return lateral * lateral * (Eigen::Matrix3d::Identity() - along) + axial * axial * along;
 }
 
+// The disparity field's share of a pair's covariance (header): along q's ray, σ = z² g |n_q − n_p| / (f b)
+// with z the nearer of the two depths, so a point that stays where it was in the image gains nothing.
+Eigen::Matrix3d field_covariance(const Eigen::Vector3d& p, const Eigen::Vector3d& q, const PointNoise& n) {
+    const double zp = std::max(p.z(), 0.1), zq = std::max(q.z(), 0.1), z = std::min(zp, zq);
+    const double shift = std::hypot(q.x() / zq - p.x() / zp, q.y() / zq - p.y() / zp);
+    const double sigma = z * z * n.field_gradient_px * shift / n.focal_baseline_pxm;
+    const Eigen::Vector3d u = q.normalized();
+    return sigma * sigma * (u * u.transpose());
+}
+
 Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
     Eigen::Matrix3d m;
     m << 0, -v.z(), v.y(), v.z(), 0, -v.x(), -v.y(), v.x(), 0;
@@ -29,8 +39,11 @@ std::vector<Eigen::Matrix3d> information_of(const std::vector<Eigen::Vector3d>& 
                                             const PointNoise& noise, const Eigen::Matrix3d& R) {
     std::vector<Eigen::Matrix3d> information;
     information.reserve(from.size());
-    for (std::size_t i = 0; i < from.size(); ++i)
-        information.push_back((R * point_covariance(from[i], noise) * R.transpose() + point_covariance(to[i], noise)).inverse());
+    for (std::size_t i = 0; i < from.size(); ++i) {
+        Eigen::Matrix3d sigma = R * point_covariance(from[i], noise) * R.transpose() + point_covariance(to[i], noise);
+        if (noise.field_gradient_px > 0) sigma += field_covariance(from[i], to[i], noise);
+        information.push_back(sigma.inverse());
+    }
     return information;
 }
 

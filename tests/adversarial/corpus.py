@@ -227,7 +227,10 @@ def put_vo_params(args, w):
               "depth_noise_nan": ({"depth_noise": "nan"}, r"parameter 'depth_noise': 'nan' is not a finite number"),
               "depth_noise_huge": ({"depth_noise": "1e400"}, r"parameter 'depth_noise': '1e400' is not a finite number"),
               "refinement_unknown": ({"refinement": "lm"}, r"parameter 'refinement': 'lm' is not one of umeyama\|noise_model"),
-              "interpolation_text": ({"depth_interpolation": "sometimes"}, r"parameter 'depth_interpolation'")}
+              "interpolation_text": ({"depth_interpolation": "sometimes"}, r"parameter 'depth_interpolation'"),
+              "field_negative": ({"depth_field": "-1.5"}, r"parameter 'depth_field': '-1.5' is outside"),
+              "focal_baseline_zero": ({"focal_baseline": "0"}, r"parameter 'focal_baseline': '0' is outside"),
+              "field_off": ({"depth_field": "0"}, None)}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")
@@ -235,7 +238,7 @@ def put_vo_params(args, w):
                      extra="frames: 8\n")
         r, _ = sweep(args, cfg)
         if pattern is None:
-            check("put_vo: the healthy noise-model parameters run", r.returncode == 0, r.stderr[-500:])
+            check(f"put_vo: the healthy noise-model parameters run ({name})", r.returncode == 0, r.stderr[-500:])
         else:
             ok = r.returncode != 0 and re.search(re.escape(path) + r":\d+:\d+: plugin 'put_vo', " + pattern, r.stderr) is not None
             check(f"put_vo: {name} refuses the config naming file:line:column and the parameter", ok,

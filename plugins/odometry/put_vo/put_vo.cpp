@@ -66,6 +66,11 @@ public:
                  {"depth_noise", VOBENCH_PARAM_DOUBLE, "1.425e-3", 1e-5, 1, "",
                   "noise_model: depth σ per z², 1/m (Kinect v1: 1.425e-3, Khoshelham & Elberink 2012)"},
                  {"pixel_noise", VOBENCH_PARAM_DOUBLE, "0.25", 0.01, 10, "", "noise_model: σ of a tracked feature's position, px"},
+                 {"depth_field", VOBENCH_PARAM_DOUBLE, "1.5", 0, 100, "",
+                  "noise_model: gradient of the depth camera's disparity offset field, px per pinhole-normalised unit "
+                  "(a pair's depths disagree by z² g |Δn| / (f b) when its point moved |Δn| in the image; 0: none)"},
+                 {"focal_baseline", VOBENCH_PARAM_DOUBLE, "43.5", 1, 10000, "",
+                  "noise_model: the depth camera's focal length × baseline, px·m (Kinect v1: 580 px × 7.5 cm)"},
                  {"depth_interpolation", VOBENCH_PARAM_BOOL, "true", 0, 0, "",
                   "depth at a feature's sub-pixel position (bilinear, where the 3×3 neighbourhood is smooth), not the nearest pixel's"},
                  {"min_inlier_ratio", VOBENCH_PARAM_DOUBLE, "0.25", 0, 1, "", "below this inlier ratio the frame is lost"},
@@ -109,6 +114,8 @@ public:
         noise_.axial_per_z2 = p.get_double("depth_noise");
         noise_.lateral_px = p.get_double("pixel_noise");
         noise_.focal_px = camera.fx;
+        noise_.field_gradient_px = p.get_double("depth_field");
+        noise_.focal_baseline_pxm = p.get_double("focal_baseline");
         min_inlier_ratio_ = p.get_double("min_inlier_ratio");
         min_inliers_ = static_cast<int>(p.get_int("min_inliers"));
         depth_range_ = {p.get_double("depth_min"), p.get_double("depth_max"), p.get_bool("depth_interpolation")};
