@@ -287,8 +287,15 @@ int check_in_child(const ConformanceOptions& options, std::ostream& out) {
     }
     std::filesystem::remove(verdict, ec);
     out << clean_text(child.output, true);
-    if (child.exited && (child.exit_code == 0 || child.exit_code == 1) && written == std::to_string(child.exit_code))
-        return child.exit_code;
+    const bool finished = child.exited && (child.exit_code == 0 || child.exit_code == 1) && written == std::to_string(child.exit_code);
+    if (finished && child.left_behind > 0) {
+        // What a sweep fails a cell for (cell_supervisor.cpp): a plugin must not outlive its process.
+        out << "FAIL  " << options.library.string() << ": left " << child.left_behind << " process" << (child.left_behind == 1 ? "" : "es")
+            << " running after the check ended (killed)\n"
+            << "FAIL " << options.library.string() << std::endl;
+        return 1;
+    }
+    if (finished) return child.exit_code;
     // The last step line the child printed is where the plugin was.
     std::string last;
     std::size_t pos = 0;

@@ -332,6 +332,7 @@ ChildResult run_program(const std::vector<std::string>& argv, int timeout_s) {
 ChildResult run_self(const std::vector<std::string>& args, int timeout_s) {
     ChildLimits limits;
     limits.timeout_s = timeout_s;
+    limits.contain = true;
     limits.log = temporary_log();
     ChildResult result = run_self_limited(args, limits);
     take_output(result, limits.log);

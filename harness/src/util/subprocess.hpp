@@ -92,7 +92,9 @@ ChildResult run_worker_limited(const std::vector<std::string>& args, const Child
 // Throws std::runtime_error if it cannot start.
 ChildResult run_program(const std::vector<std::string>& argv, int timeout_s);
 
-// As above with the output captured into ChildResult::output (a temporary log file).
+// As above with the output captured into ChildResult::output (a temporary log file), contained
+// (ChildLimits::contain): whatever the child leaves running when it ends is killed and counted in
+// ChildResult::left_behind.
 ChildResult run_self(const std::vector<std::string>& args, int timeout_s);
 
 }  // namespace vobench
