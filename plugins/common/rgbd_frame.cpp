@@ -79,6 +79,12 @@ cv::Mat distortion_of(const vobench_camera& c) {
     return d;
 }
 
+cv::Point2f at_middle_row(const cv::Point2f& pixel, const cv::Point2f& flow, int rows, double readout_s, double interval_s) {
+    if (!(readout_s > 0) || !(interval_s > 0) || rows <= 0) return pixel;
+    const double lag = (pixel.y / rows - 0.5) * readout_s / interval_s;  // in frame intervals
+    return {static_cast<float>(pixel.x - lag * flow.x), static_cast<float>(pixel.y - lag * flow.y)};
+}
+
 void write_pose(const Eigen::Isometry3d& T, vobench_pose& pose) {
     const Eigen::Quaterniond q(T.linear());
     pose.tx = T.translation().x();

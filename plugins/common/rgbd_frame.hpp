@@ -32,6 +32,14 @@ double depth_at(const cv::Mat& depth, double scale, const cv::Point2f& pixel, co
 std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels, const cv::Matx33d& K,
                                           const cv::Mat& distortion, const DepthRange& range);
 
+// Where a feature seen at `pixel` was when the frame's middle row was exposed. A rolling shutter
+// reads row v out (v / rows − ½)·readout_s after the middle row (the renderer's model, and the real
+// Kinect colour camera's: docs/synthetic-sensors.md); in that time the feature moved that share of its
+// image motion `flow`, measured over the last `interval_s`. Constant image velocity: Kerl et al. (2015)
+// model the same readout for RGB-D odometry with a continuous-time camera pose; a feature's own flow
+// needs no pose and carries its parallax. The pixel unchanged when readout_s or interval_s is 0.
+cv::Point2f at_middle_row(const cv::Point2f& pixel, const cv::Point2f& flow, int rows, double readout_s, double interval_s);
+
 // K and distortion coefficients of an ABI camera.
 cv::Matx33d camera_matrix(const vobench_camera& camera);
 cv::Mat distortion_of(const vobench_camera& camera);

@@ -3,7 +3,8 @@
 //   2. DBSCAN over their positions, the strongest of each cluster kept (dbscan);
 //   3. pyramidal Lucas–Kanade tracking from the key frame through the following frames;
 //   4. every n frames, or earlier when tracking thins out, a new key frame; depth associated with
-//      the tracked points (undistorted pixels) gives two 3-D point sets;
+//      the tracked points (undistorted pixels, moved to the middle row's time under the colour
+//      camera's rolling shutter) gives two 3-D point sets;
 //   5. RANSAC over 3-point samples + Umeyama, adaptive iterations, iterative correction (rigid_ransac);
 //   6. poses chained key frame to key frame.
 // Stages are timed through the host (detection, clustering, tracking, depth_association,
@@ -40,7 +41,7 @@ public:
                 "https://doi.org/10.1007/s00138-016-0802-6",
                 {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper",
                   "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold, depth_weighting and "
-                  "depth_interpolation off, refinement=umeyama, whatever they are set to)"},
+                  "depth_interpolation off, rolling_shutter_ms 0, refinement=umeyama, whatever they are set to)"},
                  {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
                  {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
@@ -73,6 +74,9 @@ public:
                   "noise_model: the depth camera's focal length × baseline, px·m (Kinect v1: 580 px × 7.5 cm)"},
                  {"depth_interpolation", VOBENCH_PARAM_BOOL, "true", 0, 0, "",
                   "depth at a feature's sub-pixel position (bilinear, where the 3×3 neighbourhood is smooth), not the nearest pixel's"},
+                 {"rolling_shutter_ms", VOBENCH_PARAM_DOUBLE, "20", 0, 200, "",
+                  "colour camera's readout time, ms: each feature is moved back to where it was when the middle row was "
+                  "exposed, along its own image motion over the last frame (0: a global shutter)"},
                  {"min_inlier_ratio", VOBENCH_PARAM_DOUBLE, "0.25", 0, 1, "", "below this inlier ratio the frame is lost"},
                  {"min_inliers", VOBENCH_PARAM_INT, "10", 3, 10000, "", "below this inlier count the frame is lost"},
                  {"depth_min", VOBENCH_PARAM_DOUBLE, "0.1", 0, 100, "", "depth accepted from, m"},
@@ -122,12 +126,14 @@ public:
         max_translation_ = p.get_double("max_translation");
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
+        readout_s_ = p.get_double("rolling_shutter_ms") * 1e-3;
         if (p.get_string("profile") == "paper") {
             flow_prior_ = false;
             lk_fb_threshold_ = 0;
             ransac_.depth_weighted_refinement = false;
             noise_refinement_ = false;
             depth_range_.interpolate = false;
+            readout_s_ = 0;
         }
         rng_.seed(seed);
         reset();
@@ -141,6 +147,7 @@ public:
         world_from_current_ = Eigen::Isometry3d::Identity();
         frames_since_keyframe_ = 0;
         median_flow_ = {0, 0};
+        flow_interval_s_ = 0;
     }
 
     vobench_tracking_status process(const vobench_frame& frame, vobench_pose& pose) override {
@@ -156,6 +163,10 @@ public:
             make_keyframe(depth, depth_scale, true);
         } else {
             track();
+            // The flow just measured spans the two frames' stamps; a clock-less set (the index as its
+            // stamp) or a stalled clock gives no usable interval, and the correction stays off.
+            const double interval = frame.timestamp - previous_stamp_;
+            flow_interval_s_ = interval > 0 && interval < 1.0 ? interval : 0;
             ++frames_since_keyframe_;
             bool keyframe_due = frames_since_keyframe_ >= keyframe_interval_ || static_cast<int>(tracked_.size()) < redetect_below_;
             if (keyframe_due || estimate_every_frame_) {
@@ -170,6 +181,7 @@ public:
             if (keyframe_due) make_keyframe(depth, depth_scale, status == VOBENCH_TRACKING_LOST);
         }
         prev_pyramid_.swap(pyramid_);
+        previous_stamp_ = frame.timestamp;
         host().counter("features_tracked", static_cast<double>(tracked_.size()));
         vobench::rgbd::write_pose(world_from_current_, pose);
         return status;
@@ -182,8 +194,23 @@ private:
         cv::Point2f flow{0, 0};  // its image motion over the last frame: the next search starts there
     };
 
-    std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<cv::Point2f>& pixels) const {
-        return vobench::rgbd::back_project(depth, scale, pixels, K_, dist_, depth_range_);
+    // The 3-D points of `features`: the depth where the image shows them, the ray through where they
+    // were when the middle row was exposed (rolling shutter, rgbd::at_middle_row). The lens's local
+    // scale is taken as 1 for the shift, a fraction of a pixel's flow.
+    std::vector<Eigen::Vector3d> back_project(const cv::Mat& depth, double scale, const std::vector<Feature>& features) const {
+        std::vector<cv::Point2f> pixels;
+        pixels.reserve(features.size());
+        for (const Feature& f : features) pixels.push_back(f.position);
+        std::vector<Eigen::Vector3d> points = vobench::rgbd::back_project(depth, scale, pixels, K_, dist_, depth_range_);
+        if (readout_s_ > 0 && flow_interval_s_ > 0)
+            for (std::size_t i = 0; i < points.size(); ++i) {
+                const cv::Point2f shift = vobench::rgbd::at_middle_row(pixels[i], features[i].flow, static_cast<int>(camera_.height),
+                                                                       readout_s_, flow_interval_s_) -
+                                          pixels[i];
+                points[i].x() += shift.x * points[i].z() / camera_.fx;
+                points[i].y() += shift.y * points[i].z() / camera_.fy;
+            }
+        return points;
     }
 
     void track() {
@@ -249,9 +276,7 @@ private:
         std::vector<Eigen::Vector3d> from, to;
         {
             Host::Stage s(host(), "depth_association");
-            std::vector<cv::Point2f> pixels;
-            for (const Feature& f : tracked_) pixels.push_back(f.position);
-            const std::vector<Eigen::Vector3d> current = back_project(depth, scale, pixels);
+            const std::vector<Eigen::Vector3d> current = back_project(depth, scale, tracked_);
             for (std::size_t i = 0; i < current.size(); ++i)
                 if (!std::isnan(current[i].x()) && !std::isnan(keyframe_points_[i].x())) {
                     from.push_back(current[i]);
@@ -334,9 +359,7 @@ private:
     void keep_features_with_depth(const cv::Mat& depth, double scale, std::vector<Feature>& features,
                                   std::vector<Eigen::Vector3d>& points) const {
         Host::Stage s(host(), "depth_association");
-        std::vector<cv::Point2f> pixels;
-        for (const Feature& f : features) pixels.push_back(f.position);
-        const std::vector<Eigen::Vector3d> all = back_project(depth, scale, pixels);
+        const std::vector<Eigen::Vector3d> all = back_project(depth, scale, features);
         std::size_t kept = 0;
         for (std::size_t i = 0; i < features.size(); ++i) {
             if (std::isnan(all[i].x())) continue;
@@ -354,6 +377,9 @@ private:
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
     bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true;
+    double readout_s_ = 0;        // rolling shutter: the colour camera's readout time
+    double flow_interval_s_ = 0;  // the time the features' flow was measured over (0: unknown)
+    double previous_stamp_ = 0;
     cv::Point2f median_flow_{0, 0};
     cv::Size lk_window_{7, 7};
     cv::TermCriteria lk_criteria_;
