@@ -230,7 +230,10 @@ def put_vo_params(args, w):
               "interpolation_text": ({"depth_interpolation": "sometimes"}, r"parameter 'depth_interpolation'"),
               "field_negative": ({"depth_field": "-1.5"}, r"parameter 'depth_field': '-1.5' is outside"),
               "focal_baseline_zero": ({"focal_baseline": "0"}, r"parameter 'focal_baseline': '0' is outside"),
-              "field_off": ({"depth_field": "0"}, None)}
+              "field_off": ({"depth_field": "0"}, None),
+              "readout_negative": ({"rolling_shutter_ms": "-20"}, r"parameter 'rolling_shutter_ms': '-20' is outside"),
+              "readout_text": ({"rolling_shutter_ms": "fast"}, r"parameter 'rolling_shutter_ms': 'fast' is not"),
+              "readout_off": ({"rolling_shutter_ms": "0"}, None)}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")
