@@ -330,6 +330,42 @@ def synth_inputs(args, w):
     while random_stamps[-1] < 100.8:
         random_stamps.append(random_stamps[-1] + rng.uniform(0.010, 0.060))
     clock_case("random_intervals", random_stamps[:-1], recorded)
+    # Effect measured_reference reads the trajectory file's noise and smooths the path it renders: a
+    # 100-Hz file whose stamps repeat and pause, and one whose quaternions flip sign from line to line
+    # (the same rotations: q and −q), must render with finite figures in synth.json, a smoothing that
+    # takes away no more than a hundredth of a degree where the file has no noise, and the file's own
+    # poses as the reference.
+    refused("a misspelt measured_reference", ["synth", "--effects", "-measured_referense", "--frames", "2", "--out",
+                                               os.path.join(d, "out")], r"unknown effect 'measured_referense'.*measured_reference")
+    def path_case(name, lines, expect):
+        f = os.path.join(d, f"path_{name}.txt")
+        write(f, "".join(lines))
+        out = os.path.join(d, "measured_" + name)
+        r = run([args.vobench, "synth", "--trajectory", f, "--trajectory-format", "tum", "--frames", "3", "--out", out], timeout=300)
+        meta = json.load(open(os.path.join(out, "synth.json"))).get("measured_reference", {}) if r.returncode == 0 else {}
+        numbers = [meta.get("bandwidth_s"), meta.get("residual_rotation_deg"), meta.get("residual_position_m")] + \
+            meta.get("noise_rotation_deg", [None]) + meta.get("noise_position_m", [None])
+        finite = all(isinstance(x, (int, float)) and math.isfinite(x) for x in numbers)
+        first = open(os.path.join(out, "groundtruth.txt")).read().split("\n")[2].split() if r.returncode == 0 else []
+        check(f"synth along a file with {name.replace('_', ' ')}: rendered, the smoothing recorded finite ({expect.__doc__})",
+              r.returncode == 0 and finite and expect(meta, first), f"rc {r.returncode}: {r.stderr[-400:]} {meta} {first}")
+
+    def kept(meta, first):
+        """the file's first pose is the reference"""
+        return len(first) == 8 and abs(float(first[1]) - 0.0) < 1e-9
+    def untouched(meta, first):
+        """no noise read, nothing taken away"""
+        return meta.get("residual_rotation_deg", 1) < 0.01 and kept(meta, first)
+    noisy = random.Random(9)
+    stamps = [100 + 0.01 * k for k in range(80)]
+    stamps[20] = stamps[19]
+    stamps[40:] = [t + 0.5 for t in stamps[40:]]
+    path_case("repeated_and_paused_stamps",
+              [f"{t:.4f} {0.002 * k + (noisy.gauss(0, 1e-4) if k else 0):.6f} 0 1.5 "
+               f"{noisy.gauss(0, 4e-4):.6f} {noisy.gauss(0, 4e-4):.6f} 0 1\n" for k, t in enumerate(stamps)], kept)
+    path_case("quaternion_signs_flipping",
+              [f"{100 + 0.01 * k:.4f} {0.002 * k:.6f} 0 1.5 0 {s * math.sin(0.001 * k):.9f} 0 {s * math.cos(0.001 * k):.9f}\n"
+               for k, s in ((k, 1 if k % 2 == 0 else -1) for k in range(80))], untouched)
     # synth stats on broken folders.
     good = os.path.join(d, "stats_good")
     r = run([args.vobench, "synth", "--frames", "3", "--layout", "tum", "--out", good], timeout=300)

@@ -141,7 +141,8 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"stamp_offsets", &Effects::stamp_offsets},
                                                                             {"stamp_latency", &Effects::stamp_latency},
                                                                             {"stamp_jitter", &Effects::stamp_jitter},
-                                                                            {"depth_distortion", &Effects::depth_distortion}};
+                                                                            {"depth_distortion", &Effects::depth_distortion},
+                                                                            {"measured_reference", &Effects::measured_reference}};
     return table;
 }
 

@@ -51,6 +51,9 @@ struct Effects {
     bool stamp_latency = true;            // --stamps: each image exposed its stream's latency before its recorded stamp
     bool stamp_jitter = true;             // --stamps: exposed on the camera's regular clock, about which the recorded stamps jitter
     bool depth_distortion = true;         // Kinect v1: the camera's measured disparity offset field (none: nothing to add)
+    // Trajectory files: the camera moves along the file's smoothed path, the file (with its motion
+    // capture's noise) stays the reference (measured_path.hpp).
+    bool measured_reference = true;
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or

@@ -3,6 +3,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_catalog.hpp"
 #include "synth/frame_plan.hpp"
+#include "synth/measured_path.hpp"
 #include "synth/office.hpp"
 #include "synth/renderer.hpp"
 #include "synth/trajectory_families.hpp"
@@ -223,10 +224,16 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
     const StampLatency latency =
         !o.stamps.empty() && sensor.effects.stamp_latency ? StampLatency{sensor.color_latency_s, sensor.depth_latency_s} : StampLatency{};
     StampClocks clocks;
+    // A trajectory file is a measurement: the camera is rendered along its smoothed path, and the file
+    // stays the reference (effect measured_reference). A built-in trajectory is the camera's own path.
+    MeasuredPath measured;
+    measured.smooth = paths.camera;
+    if (sensor.effects.measured_reference && !is_trajectory_family(o.trajectory)) measured = smooth_measured_path(paths.camera);
+    const metrics::Trajectory& rendered_path = measured.smooth;
     std::vector<PlannedFrame> plan =
-        o.stamps.empty() ? plan_every_pose(paths.camera)
-                         : plan_from_tum_stamps(paths.camera, o.stamps, skipped, latency, sensor.effects.stamp_jitter, &clocks);
-    if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, paths.camera, o.seed);
+        o.stamps.empty() ? plan_every_pose(rendered_path)
+                         : plan_from_tum_stamps(rendered_path, o.stamps, skipped, latency, sensor.effects.stamp_jitter, &clocks);
+    if (o.stamps.empty() && sensor.effects.stamp_offsets) offset_depth_stamps(plan, rendered_path, o.seed);
     const uint64_t count = o.frames > 0 ? std::min<uint64_t>(o.frames, plan.size()) : plan.size();
     plan.resize(count);
 
@@ -274,7 +281,9 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
             exposure_reference > 0 ? exposure_reference + follow * (frame.mean_luminance - exposure_reference) : frame.mean_luminance;
         const std::string stamp = fmt::format("{:.6f}", planned.color_stamp);
         const std::string depth_stamp = fmt::format("{:.6f}", planned.depth_stamp);
-        const auto pose = metrics::StampedPose::from_isometry(planned.color_stamp, planned.color_pose);
+        // The reference: the file's own pose of this frame (one frame per pose here), not the path rendered.
+        const auto pose = metrics::StampedPose::from_isometry(
+            planned.color_stamp, o.stamps.empty() && k < paths.camera.size() ? paths.camera[k].isometry() : planned.color_pose);
         if (povray) {
             write_povray_frame(o.out, k, planned.color_pose, frame, sensor.color);
             gt_sim += sim_rows(pose.isometry());
@@ -364,7 +373,16 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"min_room_m", office.min_room},
                               {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
                               {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
-                              {"room_boxes", scene.boxes.size()}};
+                              {"room_boxes", scene.boxes.size()},
+                              {"measured_reference",
+                               {{"bandwidth_s", measured.bandwidth_s},
+                                {"noise_rotation_deg", std::vector<double>{measured.noise.rotation_rad.x() * 180.0 / M_PI,
+                                                                           measured.noise.rotation_rad.y() * 180.0 / M_PI,
+                                                                           measured.noise.rotation_rad.z() * 180.0 / M_PI}},
+                                {"noise_position_m", std::vector<double>{measured.noise.position_m.x(), measured.noise.position_m.y(),
+                                                                         measured.noise.position_m.z()}},
+                                {"residual_rotation_deg", measured.residual_rotation_rad * 180.0 / M_PI},
+                                {"residual_position_m", measured.residual_position_m}}}};
     write_json_atomic(o.out / "synth.json", meta);
     return {count, skipped, seconds};
 }

@@ -34,7 +34,9 @@ namespace vobench::synth {
 // 6: desks are tops on legs; furniture other than desks and pillars against the walls, looked-at
 //    desks only within 1.3 m, the nearest first; offices of at least 9 m for cameras that ask for
 //    them (tum-fr1); Kinect v1's depth runs 6 px into the projector's shadow.
-constexpr int kGeneratorVersion = 6;
+// 7: a trajectory file is rendered along its smoothed path, the file's poses kept as the reference
+//    (effect measured_reference, measured_path.hpp); built-in trajectories render as in 6.
+constexpr int kGeneratorVersion = 7;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
