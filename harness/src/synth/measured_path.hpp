@@ -3,8 +3,8 @@
 //
 // Why it matters for a rendering: TUM's 100-Hz reference poses jitter from sample to sample by
 // 0.02–0.07° per axis (fr1, fr2, fr3 alike). The jitter is the capture's noise, not the camera's
-// motion: the second differences of successive orientations correlate at lag 1 by −0.43 to −0.58
-// (white noise alone: −2/3; smooth motion: near +1). A rendering taken straight along the file moves
+// motion: the second differences of successive orientations correlate at lag 1 by −0.2 to −0.58 per
+// axis (white noise alone: −2/3; smooth motion: near +1). A rendering taken straight along the file moves
 // its camera by that jitter — every frame's rolling shutter and motion blur then follow a velocity
 // that changes by most of itself from one frame to the next (fr3/long_office at 33 Hz: a median step
 // of 0.32° changes by 0.25° between frames), a shake no real Kinect has — while its reference is
@@ -48,7 +48,8 @@ struct MeasuredPath {
 };
 
 // The widest bandwidth of 1, 1.5, 2, 3, 4, 6 and 8 median sampling intervals whose residual RMS stays
-// within the estimated noise (rotation and position each); none when even the narrowest exceeds it.
+// within the estimated noise of the orientations (whose jitter is what moves an image); none when even
+// the narrowest exceeds it.
 MeasuredPath smooth_measured_path(const metrics::Trajectory& poses);
 
 }  // namespace vobench::synth
