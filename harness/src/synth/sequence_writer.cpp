@@ -198,6 +198,9 @@ void write_putk2_calibration(const SynthOptions& o, const SensorModel& sensor, c
     }
 }
 
+// A per-axis figure for synth.json.
+std::vector<double> as_list(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
+
 // A stream's fitted clock for synth.json (not fitted: the images were taken at their stamps).
 nlohmann::json clock_json(const CameraClock& c) {
     return {{"fitted", c.fitted}, {"period_s", c.period_s}, {"jitter_rms_s", c.jitter_rms_s}, {"off_clock", c.off_clock}};
@@ -376,11 +379,8 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
                               {"room_boxes", scene.boxes.size()},
                               {"measured_reference",
                                {{"bandwidth_s", measured.bandwidth_s},
-                                {"noise_rotation_deg", std::vector<double>{measured.noise.rotation_rad.x() * 180.0 / M_PI,
-                                                                           measured.noise.rotation_rad.y() * 180.0 / M_PI,
-                                                                           measured.noise.rotation_rad.z() * 180.0 / M_PI}},
-                                {"noise_position_m", std::vector<double>{measured.noise.position_m.x(), measured.noise.position_m.y(),
-                                                                         measured.noise.position_m.z()}},
+                                {"noise_rotation_deg", as_list(measured.noise.rotation_rad * (180.0 / M_PI))},
+                                {"noise_position_m", as_list(measured.noise.position_m)},
                                 {"residual_rotation_deg", measured.residual_rotation_rad * 180.0 / M_PI},
                                 {"residual_position_m", measured.residual_position_m}}}};
     write_json_atomic(o.out / "synth.json", meta);
