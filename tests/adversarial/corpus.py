@@ -391,6 +391,18 @@ def synth_inputs(args, w):
     broken("an 8-bit depth image", lambda b: shutil.copy(first_rgb(b), first_depth(b)), r"not a 16-bit single-channel PNG")
     broken("a missing depth image", lambda b: os.remove(first_depth(b)), r"not a 16-bit single-channel PNG")
     broken("a hostile list line", lambda b: write(os.path.join(b, "rgb.txt"), HOSTILE + "\n"), r"rgb\.txt:1")
+
+    def corrupt_colour_between_frames(b):
+        # A colour image no depth image goes with, listed between the first two frames: the brightness
+        # change into the second frame is measured from it, so it is read and must decode.
+        lines = open(os.path.join(b, "rgb.txt")).read().splitlines(keepends=True)
+        first = next(i for i, l in enumerate(lines) if not l.startswith("#"))
+        stamp = float(lines[first].split()[0]) + 0.0165
+        lines.insert(first + 1, f"{stamp:.6f} rgb/unpaired.png\n")
+        write(os.path.join(b, "rgb.txt"), "".join(lines))
+        write(os.path.join(b, "rgb", "unpaired.png"), "not a png")
+
+    broken("a corrupt unpaired colour image between two frames", corrupt_colour_between_frames, r"unpaired\.png: cannot be decoded")
     # synth stats --camera (the reference-consistency and ICP-conditioning statistics): the healthy
     # folder gains them; a bad camera, a broken groundtruth.txt or a camera of another size is refused.
     r = run([args.vobench, "synth", "stats", good, "--camera", "putk2-kinect1", "--json"], timeout=120)

@@ -4,6 +4,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
 #include "synth/stamp_latency.hpp"
 #include "tum_lists.hpp"  // plugins/common
@@ -324,6 +325,61 @@ void measure_shadow_steps(const cv::Mat& depth_m, double fx, Accumulator& acc) {
     }
 }
 
+// The colour camera's brightness change into each measured frame from the one before it in rgb.txt
+// (photometric_gain.hpp): the median and the 90th percentile of its absolute log ratio over the
+// frames, in per cent; and, when the measured frames are consecutive, the auto-exposure time constant
+// that best explains them.
+class GainChanges {
+public:
+    void add(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, std::size_t index, const cv::Mat& grey) {
+        const bool follows = index == last_index_ + 1;
+        std::optional<GainChange> change;
+        if (index > 0) {
+            cv::Mat before = follows ? last_grey_ : cv::Mat();
+            if (before.empty()) {
+                const auto path = folder / rgb[index - 1].path;
+                before = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+                if (before.empty()) throw std::runtime_error(path.string() + ": cannot be decoded as an image");
+            }
+            if (before.size() != grey.size())
+                throw std::runtime_error((folder / rgb[index].path).string() + ": not the size of the colour image before it");
+            change = measure_gain_change(before, grey);
+            if (change) changes_.push_back(100.0 * std::abs(change->log_ratio));
+        }
+        // The exposure fit needs an unbroken run: every frame's change from the one before.
+        if (!exposure_.empty() && !(follows && change)) run_broken_ = true;
+        if (!run_broken_) exposure_.push_back({rgb[index].stamp, mean_linear_light(grey), change ? change->log_ratio : 0.0});
+        last_index_ = index;
+        last_grey_ = grey;
+    }
+    void report(Accumulator& acc) const {
+        if (!changes_.empty()) {
+            auto sorted = changes_;
+            std::sort(sorted.begin(), sorted.end());
+            auto at = [&](double q) { return sorted[static_cast<std::size_t>(std::round(q * static_cast<double>(sorted.size() - 1)))]; };
+            acc.mean("image.gain_change_median_pct", "brightness change from the frame before, median of the absolute log ratio, %",
+                     at(0.5));
+            acc.mean("image.gain_change_p90_pct", "brightness change from the frame before, 90th percentile of the absolute log ratio, %",
+                     at(0.9));
+        }
+        if (run_broken_) return;
+        if (const auto fit = fit_exposure_time_constant(exposure_)) {
+            acc.mean("image.exposure_time_constant_s", "auto-exposure time constant, s (best fit of the renderer's model to the gains)",
+                     fit->time_constant_s);
+            if (fit->rms_of_gain > 0)
+                acc.mean("image.exposure_explained", "share of the gains' variance the fitted auto-exposure explains",
+                         1.0 - (fit->rms * fit->rms) / (fit->rms_of_gain * fit->rms_of_gain));
+        }
+    }
+
+private:
+    std::size_t last_index_ = static_cast<std::size_t>(-1);
+    cv::Mat last_grey_;
+    std::vector<double> changes_;
+    std::vector<ExposureFrame> exposure_;
+    bool run_broken_ = false;
+};
+
 }  // namespace
 
 FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t max_frames, double depth_scale,
@@ -339,6 +395,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     for (std::size_t k = 0; k < n; ++k) chosen.push_back(n == pairs.size() ? k : k * pairs.size() / n);
     Accumulator acc;
     ShiftScores shifts{};
+    GainChanges gains;
     std::optional<DepthRays> rays;
     if (camera) rays.emplace(*camera);
     for (std::size_t k : chosen) {
@@ -353,6 +410,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         measure_depth(depth_m, grey, acc);
         score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
+        gains.add(folder, rgb, m.first, grey);
         if (rays) {
             require_camera_size(depth_path, depth_m, *camera);
             const IcpConditioning c = icp_conditioning(depth_m, *rays);
@@ -364,6 +422,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);
         acc.maximum("stamps.offset_max_ms", "colour–depth stamp offset, largest |Δt|, ms", offset_ms);
     }
+    gains.report(acc);
     // The depth image's content sits (dx, dy) px from the colour image's: colour edge at depth edge − shift.
     int best_x = 0, best_y = 0;
     for (int dy = -kMaxShift; dy <= kMaxShift; ++dy)

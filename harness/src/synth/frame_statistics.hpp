@@ -15,6 +15,9 @@
 //   sharpness: the variance of the Laplacian (motion blur and defocus lower it), and the same divided
 //     by the squared mean gradient (edge sharpness, independent of how much texture there is);
 //   brightness: mean grey level and the share of saturated pixels (≥ 250);
+//   brightness change from the colour frame before (auto-exposure and gain; photometric_gain.hpp):
+//     the median and 90th percentile over the frames of the |log ratio| of tracked corners' linear
+//     brightness, in per cent;
 //   colour–depth stamp offset: mean and largest |t_rgb − t_depth| of the pairs, milliseconds;
 //   registration: the shift (±4 px) of the depth-step map (centred steps over 10 % of z) that best
 //     overlaps the colour-edge map (Sobel > 60), pooled over frames — depth–colour misregistration.

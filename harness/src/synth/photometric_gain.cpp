@@ -1,0 +1,124 @@
+#include "synth/photometric_gain.hpp"
+
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <vector>
+
+namespace vobench::synth {
+namespace {
+
+constexpr int kMaxCorners = 400;
+constexpr int kMeanWindow = 7;  // the brightness compared: a 7×7 mean, so that noise and a sub-pixel
+                                // tracking error hardly move it
+constexpr std::size_t kMinCorners = 20;
+
+// sRGB (IEC 61966-2-1) decoded to linear light, per grey level.
+const std::array<float, 256>& srgb_to_linear() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            const double c = i / 255.0;
+            t[static_cast<std::size_t>(i)] = static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+        }
+        return t;
+    }();
+    return table;
+}
+
+cv::Mat linear_light(const cv::Mat& grey) {
+    const auto& table = srgb_to_linear();
+    cv::Mat lut(1, 256, CV_32F);
+    for (int i = 0; i < 256; ++i) lut.at<float>(0, i) = table[static_cast<std::size_t>(i)];
+    cv::Mat linear;
+    cv::LUT(grey, lut, linear);
+    return linear;
+}
+
+}  // namespace
+
+std::optional<GainChange> measure_gain_change(const cv::Mat& a, const cv::Mat& b) {
+    if (a.type() != CV_8UC1 || b.type() != CV_8UC1 || a.size() != b.size())
+        throw std::invalid_argument("measure_gain_change: two 8-bit grey images of one size expected");
+    std::vector<cv::Point2f> from;
+    cv::goodFeaturesToTrack(a, from, kMaxCorners, 0.01, 8);
+    if (from.size() < kMinCorners) return std::nullopt;
+    std::vector<cv::Point2f> to;
+    std::vector<unsigned char> tracked;
+    std::vector<float> error;
+    cv::calcOpticalFlowPyrLK(a, b, from, to, tracked, error, cv::Size(21, 21), 3);
+
+    const cv::Size window(kMeanWindow, kMeanWindow);
+    cv::Mat mean_a, mean_b, grey_a, grey_b;
+    cv::blur(linear_light(a), mean_a, window);
+    cv::blur(linear_light(b), mean_b, window);
+    a.convertTo(grey_a, CV_32F);
+    b.convertTo(grey_b, CV_32F);
+    cv::blur(grey_a, grey_a, window);
+    cv::blur(grey_b, grey_b, window);
+
+    const int margin = kMeanWindow / 2 + 1;
+    auto inside = [&](cv::Point p) { return p.x >= margin && p.y >= margin && p.x < a.cols - margin && p.y < a.rows - margin; };
+    auto usable = [](float grey) { return grey > 20.0f && grey < 235.0f; };
+    std::vector<double> ratios;
+    for (std::size_t i = 0; i < from.size(); ++i) {
+        if (!tracked[i]) continue;
+        const cv::Point p(cvRound(from[i].x), cvRound(from[i].y)), q(cvRound(to[i].x), cvRound(to[i].y));
+        if (!inside(p) || !inside(q)) continue;
+        if (!usable(grey_a.at<float>(p)) || !usable(grey_b.at<float>(q))) continue;
+        ratios.push_back(std::log(static_cast<double>(mean_b.at<float>(q)) / mean_a.at<float>(p)));
+    }
+    if (ratios.size() < kMinCorners) return std::nullopt;
+    const auto middle = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
+    std::nth_element(ratios.begin(), middle, ratios.end());
+    return GainChange{*middle, ratios.size()};
+}
+
+double mean_linear_light(const cv::Mat& grey) { return cv::mean(linear_light(grey))[0]; }
+
+std::optional<ExposureFit> fit_exposure_time_constant(const std::vector<ExposureFrame>& frames) {
+    constexpr std::size_t kMinFrames = 10;
+    if (frames.size() < kMinFrames) return std::nullopt;
+    const std::size_t n = frames.size();
+    std::vector<double> log_gain(n, 0.0), scene(n);  // G_k, and L_k = observed / gain
+    for (std::size_t k = 0; k < n; ++k) {
+        if (k > 0) log_gain[k] = log_gain[k - 1] + frames[k].log_gain;
+        scene[k] = std::max(frames[k].mean_linear, 1e-6) / std::exp(log_gain[k]);
+    }
+    auto rms_about_mean = [](const std::vector<double>& r) {
+        double mean = 0, ss = 0;
+        for (double x : r) mean += x;
+        mean /= static_cast<double>(r.size());
+        for (double x : r) ss += (x - mean) * (x - mean);
+        return std::sqrt(ss / static_cast<double>(r.size()));
+    };
+    ExposureFit best;
+    best.rms = std::numeric_limits<double>::infinity();
+    best.rms_of_gain = rms_about_mean(log_gain);
+    std::vector<double> residual(n);
+    for (int step = 0; step <= 35; ++step) {  // 10 ms · 2^(step/4): 10 ms to 4.2 s
+        const double tau = 0.01 * std::pow(2.0, step / 4.0);
+        if (tau > 3.0) break;
+        double reference = scene[0];
+        for (std::size_t k = 0; k < n; ++k) {
+            if (k > 0) {
+                const double dt = std::abs(frames[k].stamp - frames[k - 1].stamp);
+                reference += (1.0 - std::exp(-dt / tau)) * (scene[k - 1] - reference);
+            }
+            residual[k] = log_gain[k] + std::log(reference);
+        }
+        const double rms = rms_about_mean(residual);
+        if (rms < best.rms) {
+            best.rms = rms;
+            best.time_constant_s = tau;
+        }
+    }
+    return best;
+}
+
+}  // namespace vobench::synth
