@@ -110,6 +110,7 @@ TEST_CASE("exposure fit: the time constant of gains made by the renderer's model
     // gain is target / r_k, r a first-order average of the earlier frames' scene luminance.
     for (double tau : {0.08, 0.32}) {
         std::vector<synth::ExposureFrame> frames;
+        std::vector<double> log_scene;
         double reference = 0, previous_gain = 0;
         cv::RNG rng(5);
         double scene = 0.3;
@@ -120,6 +121,7 @@ TEST_CASE("exposure fit: the time constant of gains made by the renderer's model
             } else {
                 reference = scene;
             }
+            log_scene.push_back(std::log(scene));
             const double gain = 0.34 / reference;
             frames.push_back({k / 30.0, scene * gain, k > 0 ? std::log(gain / previous_gain) : 0.0});
             previous_gain = gain;
@@ -129,6 +131,10 @@ TEST_CASE("exposure fit: the time constant of gains made by the renderer's model
         CHECK(fit->time_constant_s == Approx(tau).epsilon(0.01));
         CHECK(fit->rms < 1e-9);
         CHECK(fit->rms_of_gain > 0.05);
+        double mean = 0, ss = 0;
+        for (double l : log_scene) mean += l / static_cast<double>(log_scene.size());
+        for (double l : log_scene) ss += (l - mean) * (l - mean);
+        CHECK(fit->scene_log_sd == Approx(std::sqrt(ss / static_cast<double>(log_scene.size()))).epsilon(1e-9));
     }
     CHECK_FALSE(synth::fit_exposure_time_constant(std::vector<synth::ExposureFrame>(9)));
 }

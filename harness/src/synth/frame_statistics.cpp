@@ -369,6 +369,8 @@ public:
             if (fit->rms_of_gain > 0)
                 acc.mean("image.exposure_explained", "share of the gains' variance the fitted auto-exposure explains",
                          1.0 - (fit->rms * fit->rms) / (fit->rms_of_gain * fit->rms_of_gain));
+            acc.mean("image.scene_luminance_log_sd", "scene brightness over the views (observed mean ÷ gain), sd of its log",
+                     fit->scene_log_sd);
         }
     }
 

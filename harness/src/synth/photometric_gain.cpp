@@ -100,6 +100,9 @@ std::optional<ExposureFit> fit_exposure_time_constant(const std::vector<Exposure
     ExposureFit best;
     best.rms = std::numeric_limits<double>::infinity();
     best.rms_of_gain = rms_about_mean(log_gain);
+    std::vector<double> log_scene(n);
+    for (std::size_t k = 0; k < n; ++k) log_scene[k] = std::log(scene[k]);
+    best.scene_log_sd = rms_about_mean(log_scene);
     std::vector<double> residual(n);
     for (int step = 0; step <= 35; ++step) {  // 10 ms · 2^(step/4): 10 ms to 4.2 s
         const double tau = 0.01 * std::pow(2.0, step / 4.0);

@@ -39,8 +39,9 @@ double mean_linear_light(const cv::Mat& grey);
 // whose τ is known: `docs/synthetic-sensors.md`, auto-exposure.
 struct ExposureFit {
     double time_constant_s = 0;
-    double rms = 0;          // of the log gain about the model's, at the best τ
-    double rms_of_gain = 0;  // of the log gain itself: how much there was to explain
+    double rms = 0;           // of the log gain about the model's, at the best τ
+    double rms_of_gain = 0;   // of the log gain itself: how much there was to explain
+    double scene_log_sd = 0;  // of log L_k: how much the scene's brightness varies over the views
 };
 struct ExposureFrame {
     double stamp = 0;        // seconds

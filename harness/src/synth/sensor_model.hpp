@@ -119,7 +119,7 @@ struct SensorModel {
     double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
     double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)
-    double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene
+    double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene (assumed; Kinect v1: measured)
     // The camera's tone curve beyond sRGB (effect tone_curve): display values stretched about the real
     // frames' mean grey g = 136/255, y' = g + tone_contrast·(y − g), clipped to [0, 1] (consumer cameras
     // boost contrast; Grossberg & Nayar 2004 measured such S-shaped responses). 1: plain sRGB.

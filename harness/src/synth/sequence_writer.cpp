@@ -341,48 +341,50 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         write_povray_calibration(o, sensor);
     else
         write_tum_calibration(o, sensor, paths, count);
-    const nlohmann::json meta{{"generator", "vobench synth"},
-                              {"generator_version", kGeneratorVersion},
-                              {"vobench_version", VOBENCH_VERSION},
-                              {"sensor", sensor.name},
-                              {"trajectory", o.trajectory},
-                              {"camera", o.camera.empty() ? "default" : o.camera},
-                              {"color_camera",
-                               {{"width", sensor.color.width},
-                                {"height", sensor.color.height},
-                                {"fx", sensor.color.fx},
-                                {"fy", sensor.color.fy},
-                                {"cx", sensor.color.cx},
-                                {"cy", sensor.color.cy},
-                                {"distortion", std::vector<double>(sensor.color.distortion.begin(),
-                                                                   sensor.color.distortion.begin() + sensor.color.distortion_count)}}},
-                              {"stamps", o.stamps.string()},
-                              {"skipped_stamps", skipped},
-                              {"frames", count},
-                              {"seed", o.seed},
-                              {"blur", sensor.effects.motion_blur},
-                              {"effects",
-                               [&] {
-                                   nlohmann::json e = nlohmann::json::object();
-                                   for (const auto& [name, on] : effect_list(sensor.effects)) e[name] = on;
-                                   return e;
-                               }()},
-                              {"layout", o.layout},
-                              {"frame_rate_hz", kFrameRateHz},
-                              {"depth_units_per_metre", putk2 ? 1000 : 5000},
-                              {"exposure_s", sensor.exposure_s},
-                              {"disparity_distortion_px", sensor.disparity_distortion_px},
-                              {"shadow_fill_px", sensor.shadow_fill_px},
-                              {"min_room_m", office.min_room},
-                              {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
-                              {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
-                              {"room_boxes", scene.boxes.size()},
-                              {"measured_reference",
-                               {{"bandwidth_s", measured.bandwidth_s},
-                                {"noise_rotation_deg", as_list(measured.noise.rotation_rad * (180.0 / M_PI))},
-                                {"noise_position_m", as_list(measured.noise.position_m)},
-                                {"residual_rotation_deg", measured.residual_rotation_rad * 180.0 / M_PI},
-                                {"residual_position_m", measured.residual_position_m}}}};
+    const nlohmann::json meta{
+        {"generator", "vobench synth"},
+        {"generator_version", kGeneratorVersion},
+        {"vobench_version", VOBENCH_VERSION},
+        {"sensor", sensor.name},
+        {"trajectory", o.trajectory},
+        {"camera", o.camera.empty() ? "default" : o.camera},
+        {"color_camera",
+         {{"width", sensor.color.width},
+          {"height", sensor.color.height},
+          {"fx", sensor.color.fx},
+          {"fy", sensor.color.fy},
+          {"cx", sensor.color.cx},
+          {"cy", sensor.color.cy},
+          {"distortion",
+           std::vector<double>(sensor.color.distortion.begin(), sensor.color.distortion.begin() + sensor.color.distortion_count)}}},
+        {"stamps", o.stamps.string()},
+        {"skipped_stamps", skipped},
+        {"frames", count},
+        {"seed", o.seed},
+        {"blur", sensor.effects.motion_blur},
+        {"auto_exposure", {{"target_linear_luminance", sensor.exposure_target}, {"time_constant_s", sensor.exposure_time_constant_s}}},
+        {"effects",
+         [&] {
+             nlohmann::json e = nlohmann::json::object();
+             for (const auto& [name, on] : effect_list(sensor.effects)) e[name] = on;
+             return e;
+         }()},
+        {"layout", o.layout},
+        {"frame_rate_hz", kFrameRateHz},
+        {"depth_units_per_metre", putk2 ? 1000 : 5000},
+        {"exposure_s", sensor.exposure_s},
+        {"disparity_distortion_px", sensor.disparity_distortion_px},
+        {"shadow_fill_px", sensor.shadow_fill_px},
+        {"min_room_m", office.min_room},
+        {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
+        {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
+        {"room_boxes", scene.boxes.size()},
+        {"measured_reference",
+         {{"bandwidth_s", measured.bandwidth_s},
+          {"noise_rotation_deg", as_list(measured.noise.rotation_rad * (180.0 / M_PI))},
+          {"noise_position_m", as_list(measured.noise.position_m)},
+          {"residual_rotation_deg", measured.residual_rotation_rad * 180.0 / M_PI},
+          {"residual_position_m", measured.residual_position_m}}}};
     write_json_atomic(o.out / "synth.json", meta);
     return {count, skipped, seconds};
 }

@@ -36,7 +36,9 @@ namespace vobench::synth {
 //    them (tum-fr1); Kinect v1's depth runs 6 px into the projector's shadow.
 // 7: a trajectory file is rendered along its smoothed path, the file's poses kept as the reference
 //    (effect measured_reference, measured_path.hpp); built-in trajectories render as in 6.
-constexpr int kGeneratorVersion = 7;
+// 8: Kinect v1's auto-exposure follows the scene with τ 0.04 s instead of 0.3 s (measured on
+//    fr1/rpy's brightness changes; SensorModel::exposure_time_constant_s).
+constexpr int kGeneratorVersion = 8;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
