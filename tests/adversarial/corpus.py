@@ -403,6 +403,15 @@ def synth_inputs(args, w):
         write(os.path.join(b, "rgb", "unpaired.png"), "not a png")
 
     broken("a corrupt unpaired colour image between two frames", corrupt_colour_between_frames, r"unpaired\.png: cannot be decoded")
+    # A folder whose name holds the table's own separator: every row of the Markdown table keeps its
+    # three cells (labels such as "|Δt|" hold it too).
+    piped = os.path.join(d, "stats|a`name")
+    shutil.copytree(good, piped)
+    r = run([args.vobench, "synth", "stats", piped], timeout=120)
+    rows = [l for l in r.stdout.splitlines() if l.startswith("|")]
+    cells = {len(re.split(r"(?<!\\)\|", l)) for l in rows}
+    check("synth stats: a folder named with | and ` keeps every table row at its cells", r.returncode == 0 and len(rows) > 5 and cells == {4},
+          f"cells per row {sorted(cells)}; {r.stderr[-300:]}")
     # synth stats --camera (the reference-consistency and ICP-conditioning statistics): the healthy
     # folder gains them; a bad camera, a broken groundtruth.txt or a camera of another size is refused.
     r = run([args.vobench, "synth", "stats", good, "--camera", "putk2-kinect1", "--json"], timeout=120)

@@ -4,6 +4,7 @@
 #include "synth/disparity_distortion_fit.hpp"
 #include "synth/frame_statistics.hpp"
 #include "synth/sequence_writer.hpp"
+#include "util/escape.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -59,12 +60,13 @@ CLI::App* add_stats_command(CLI::App& synth, int& exit_code) {
                 if (std::none_of(rows.begin(), rows.end(), [&](const auto& r) { return r.first == v.key; }))
                     rows.emplace_back(v.key, v.label);
         std::cout << "| statistic |";
-        for (const auto& s : all) std::cout << " " << s.folder.filename().string() << " (" << s.frames << " frames) |";
+        // Labels hold | (|Δt|) and folder names may hold anything: escaped, so each row keeps its cells.
+        for (const auto& s : all) std::cout << " " << markdown_text(s.folder.filename().string()) << " (" << s.frames << " frames) |";
         std::cout << "\n|---|";
         for (std::size_t k = 0; k < all.size(); ++k) std::cout << "---:|";
         std::cout << "\n";
         for (const auto& [key, label] : rows) {
-            std::cout << "| " << label << " |";
+            std::cout << "| " << markdown_text(label) << " |";
             for (const auto& s : all) {
                 const auto it = std::find_if(s.values.begin(), s.values.end(), [&](const auto& v) { return v.key == key; });
                 std::cout << " "
