@@ -4,7 +4,6 @@
 #include <opencv2/video/tracking.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -18,13 +17,13 @@ constexpr int kMeanWindow = 7;  // the brightness compared: a 7×7 mean, so that
                                 // tracking error hardly move it
 constexpr std::size_t kMinCorners = 20;
 
-// sRGB (IEC 61966-2-1) decoded to linear light, per grey level.
-const std::array<float, 256>& srgb_to_linear() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
+// sRGB (IEC 61966-2-1) decoded to linear light, per grey level: a table for cv::LUT.
+const cv::Mat& srgb_to_linear() {
+    static const cv::Mat table = [] {
+        cv::Mat t(1, 256, CV_32F);
         for (int i = 0; i < 256; ++i) {
             const double c = i / 255.0;
-            t[static_cast<std::size_t>(i)] = static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+            t.at<float>(0, i) = static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
         }
         return t;
     }();
@@ -32,11 +31,8 @@ const std::array<float, 256>& srgb_to_linear() {
 }
 
 cv::Mat linear_light(const cv::Mat& grey) {
-    const auto& table = srgb_to_linear();
-    cv::Mat lut(1, 256, CV_32F);
-    for (int i = 0; i < 256; ++i) lut.at<float>(0, i) = table[static_cast<std::size_t>(i)];
     cv::Mat linear;
-    cv::LUT(grey, lut, linear);
+    cv::LUT(grey, srgb_to_linear(), linear);
     return linear;
 }
 

@@ -32,7 +32,7 @@ SensorModel kinect1() {
     s.exposure_s = 0.015;
     // The auto-exposure follows the scene within about a frame: the renderer's model fitted to the
     // gains measured on the real fr1/rpy frames (`synth stats`, photometric_gain.hpp) gives τ 0.08 s,
-    // and the same fit reads renderings back 1.6–2× slower than they were made (0.3 s: 0.19–0.91,
+    // and the same fit reads renderings back 1.5–2× slower than they were made (0.3 s: 0.19–0.91,
     // 0.1 s: 0.08–0.23); rendered with 0.04 s they read 0.04–0.11 (median of ten offices 0.074).
     s.exposure_time_constant_s = 0.04;
     s.color_noise_dn = 1.2;
