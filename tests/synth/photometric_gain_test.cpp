@@ -10,6 +10,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 
 using namespace vobench;
 namespace fs = std::filesystem;
@@ -123,7 +124,8 @@ TEST_CASE("exposure fit: the time constant of gains made by the renderer's model
             }
             log_scene.push_back(std::log(scene));
             const double gain = 0.34 / reference;
-            frames.push_back({k / 30.0, scene * gain, k > 0 ? std::log(gain / previous_gain) : 0.0});
+            // Far views the dark ones: the median depth falls as the scene brightens.
+            frames.push_back({k / 30.0, scene * gain, k > 0 ? std::log(gain / previous_gain) : 0.0, 3.0 - std::log(scene)});
             previous_gain = gain;
         }
         const auto fit = synth::fit_exposure_time_constant(frames);
@@ -135,6 +137,10 @@ TEST_CASE("exposure fit: the time constant of gains made by the renderer's model
         for (double l : log_scene) mean += l / static_cast<double>(log_scene.size());
         for (double l : log_scene) ss += (l - mean) * (l - mean);
         CHECK(fit->scene_log_sd == Approx(std::sqrt(ss / static_cast<double>(log_scene.size()))).epsilon(1e-9));
+        CHECK(fit->scene_depth_correlation == Approx(-1.0).margin(1e-9));
+        // Without depth on any frame there is no correlation.
+        for (auto& f : frames) f.median_depth_m = std::numeric_limits<double>::quiet_NaN();
+        CHECK(std::isnan(synth::fit_exposure_time_constant(frames)->scene_depth_correlation));
     }
     CHECK_FALSE(synth::fit_exposure_time_constant(std::vector<synth::ExposureFrame>(9)));
 }

@@ -331,7 +331,8 @@ void measure_shadow_steps(const cv::Mat& depth_m, double fx, Accumulator& acc) {
 // that best explains them.
 class GainChanges {
 public:
-    void add(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, std::size_t index, const cv::Mat& grey) {
+    void add(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, std::size_t index, const cv::Mat& grey,
+             const cv::Mat& depth_m) {
         const bool follows = index == last_index_ + 1;
         std::optional<GainChange> change;
         if (index > 0) {
@@ -348,7 +349,8 @@ public:
         }
         // The exposure fit needs an unbroken run: every frame's change from the one before.
         if (!exposure_.empty() && !(follows && change)) run_broken_ = true;
-        if (!run_broken_) exposure_.push_back({rgb[index].stamp, mean_linear_light(grey), change ? change->log_ratio : 0.0});
+        if (!run_broken_)
+            exposure_.push_back({rgb[index].stamp, mean_linear_light(grey), change ? change->log_ratio : 0.0, median_valid_depth(depth_m)});
         last_index_ = index;
         last_grey_ = grey;
     }
@@ -371,10 +373,25 @@ public:
                          1.0 - (fit->rms * fit->rms) / (fit->rms_of_gain * fit->rms_of_gain));
             acc.mean("image.scene_luminance_log_sd", "scene brightness over the views (observed mean ÷ gain), sd of its log",
                      fit->scene_log_sd);
+            if (std::isfinite(fit->scene_depth_correlation))
+                acc.mean("image.scene_luminance_depth_correlation",
+                         "scene brightness against the frame's median depth, correlation (< 0: far views darker)",
+                         fit->scene_depth_correlation);
         }
     }
 
 private:
+    static double median_valid_depth(const cv::Mat& depth_m) {
+        std::vector<float> valid;
+        for (int v = 0; v < depth_m.rows; ++v)
+            for (int u = 0; u < depth_m.cols; ++u)
+                if (depth_m.at<float>(v, u) > 0) valid.push_back(depth_m.at<float>(v, u));
+        if (valid.empty()) return std::numeric_limits<double>::quiet_NaN();
+        const auto middle = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2);
+        std::nth_element(valid.begin(), middle, valid.end());
+        return *middle;
+    }
+
     std::size_t last_index_ = static_cast<std::size_t>(-1);
     cv::Mat last_grey_;
     std::vector<double> changes_;
@@ -412,7 +429,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         measure_depth(depth_m, grey, acc);
         score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
-        gains.add(folder, rgb, m.first, grey);
+        gains.add(folder, rgb, m.first, grey, depth_m);
         if (rays) {
             require_camera_size(depth_path, depth_m, *camera);
             const IcpConditioning c = icp_conditioning(depth_m, *rays);

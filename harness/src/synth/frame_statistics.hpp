@@ -18,8 +18,9 @@
 //   brightness change from the colour frame before (auto-exposure and gain; photometric_gain.hpp):
 //     the median and 90th percentile over the frames of the |log ratio| of tracked corners' linear
 //     brightness, in per cent; over consecutive frames, the auto-exposure time constant that best
-//     explains the gains, the share of their variance it explains, and how much the scene's own
-//     brightness (observed mean over the summed gains) varies over the views;
+//     explains the gains, the share of their variance it explains, how much the scene's own
+//     brightness (observed mean over the summed gains) varies over the views, and its correlation
+//     with the frames' median depth;
 //   colour–depth stamp offset: mean and largest |t_rgb − t_depth| of the pairs, milliseconds;
 //   registration: the shift (±4 px) of the depth-step map (centred steps over 10 % of z) that best
 //     overlaps the colour-edge map (Sobel > 60), pooled over frames — depth–colour misregistration.

@@ -36,6 +36,24 @@ cv::Mat linear_light(const cv::Mat& grey) {
     return linear;
 }
 
+// Pearson correlation of `values` with the frames' median depth, over the frames that have one.
+double correlation_with_depth(const std::vector<ExposureFrame>& frames, const std::vector<double>& values) {
+    double n = 0, sx = 0, sy = 0, sxx = 0, syy = 0, sxy = 0;
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+        const double x = frames[k].median_depth_m, y = values[k];
+        if (!std::isfinite(x)) continue;
+        n += 1;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        syy += y * y;
+        sxy += x * y;
+    }
+    const double vx = sxx - sx * sx / n, vy = syy - sy * sy / n;
+    if (n < 10 || vx <= 0 || vy <= 0) return std::numeric_limits<double>::quiet_NaN();
+    return (sxy - sx * sy / n) / std::sqrt(vx * vy);
+}
+
 }  // namespace
 
 std::optional<GainChange> measure_gain_change(const cv::Mat& a, const cv::Mat& b) {
@@ -99,6 +117,7 @@ std::optional<ExposureFit> fit_exposure_time_constant(const std::vector<Exposure
     std::vector<double> log_scene(n);
     for (std::size_t k = 0; k < n; ++k) log_scene[k] = std::log(scene[k]);
     best.scene_log_sd = rms_about_mean(log_scene);
+    best.scene_depth_correlation = correlation_with_depth(frames, log_scene);
     std::vector<double> residual(n);
     for (int step = 0; step <= 35; ++step) {  // 10 ms · 2^(step/4): 10 ms to 4.2 s
         const double tau = 0.01 * std::pow(2.0, step / 4.0);

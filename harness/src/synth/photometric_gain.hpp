@@ -14,6 +14,7 @@
 
 #include <opencv2/core.hpp>
 
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -42,11 +43,15 @@ struct ExposureFit {
     double rms = 0;           // of the log gain about the model's, at the best τ
     double rms_of_gain = 0;   // of the log gain itself: how much there was to explain
     double scene_log_sd = 0;  // of log L_k: how much the scene's brightness varies over the views
+    // Pearson correlation of log L_k with the frames' median depth over the frames that have one
+    // (NaN for fewer than 10): whether far views are the dark or the bright ones.
+    double scene_depth_correlation = 0;
 };
 struct ExposureFrame {
     double stamp = 0;        // seconds
     double mean_linear = 0;  // mean_linear_light of the frame
     double log_gain = 0;     // measured log brightness change from the frame before (ignored on the first)
+    double median_depth_m = std::numeric_limits<double>::quiet_NaN();  // of the frame's valid depth, if any
 };
 // Nothing for fewer than 10 frames.
 std::optional<ExposureFit> fit_exposure_time_constant(const std::vector<ExposureFrame>& frames);
