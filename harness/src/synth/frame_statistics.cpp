@@ -334,25 +334,27 @@ public:
     void add(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, std::size_t index, const cv::Mat& grey,
              const cv::Mat& depth_m) {
         const bool follows = index == last_index_ + 1;
+        GainFrame current = prepare_gain_frame(grey);
         std::optional<GainChange> change;
         if (index > 0) {
-            cv::Mat before = follows ? last_grey_ : cv::Mat();
-            if (before.empty()) {
+            if (!follows) {  // the frame before was not measured: read it
                 const auto path = folder / rgb[index - 1].path;
-                before = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
+                const cv::Mat before = cv::imread(path.string(), cv::IMREAD_GRAYSCALE);
                 if (before.empty()) throw std::runtime_error(path.string() + ": cannot be decoded as an image");
+                last_ = prepare_gain_frame(before);
             }
-            if (before.size() != grey.size())
+            if (last_.grey.size() != grey.size())
                 throw std::runtime_error((folder / rgb[index].path).string() + ": not the size of the colour image before it");
-            change = measure_gain_change(before, grey);
+            change = measure_gain_change(last_, current);
             if (change) changes_.push_back(100.0 * std::abs(change->log_ratio));
         }
         // The exposure fit needs an unbroken run: every frame's change from the one before.
         if (!exposure_.empty() && !(follows && change)) run_broken_ = true;
         if (!run_broken_)
-            exposure_.push_back({rgb[index].stamp, mean_linear_light(grey), change ? change->log_ratio : 0.0, median_valid_depth(depth_m)});
+            exposure_.push_back(
+                {rgb[index].stamp, current.mean_linear_light, change ? change->log_ratio : 0.0, median_valid_depth(depth_m)});
         last_index_ = index;
-        last_grey_ = grey;
+        last_ = std::move(current);
     }
     void report(Accumulator& acc) const {
         if (!changes_.empty()) {
@@ -393,7 +395,7 @@ private:
     }
 
     std::size_t last_index_ = static_cast<std::size_t>(-1);
-    cv::Mat last_grey_;
+    GainFrame last_;  // the frame measured last
     std::vector<double> changes_;
     std::vector<ExposureFrame> exposure_;
     bool run_broken_ = false;

@@ -56,44 +56,45 @@ double correlation_with_depth(const std::vector<ExposureFrame>& frames, const st
 
 }  // namespace
 
-std::optional<GainChange> measure_gain_change(const cv::Mat& a, const cv::Mat& b) {
-    if (a.type() != CV_8UC1 || b.type() != CV_8UC1 || a.size() != b.size())
-        throw std::invalid_argument("measure_gain_change: two 8-bit grey images of one size expected");
+GainFrame prepare_gain_frame(const cv::Mat& grey) {
+    if (grey.type() != CV_8UC1) throw std::invalid_argument("prepare_gain_frame: an 8-bit grey image expected");
+    const cv::Size window(kMeanWindow, kMeanWindow);
+    GainFrame f;
+    f.grey = grey;
+    const cv::Mat linear = linear_light(grey);
+    f.mean_linear_light = cv::mean(linear)[0];
+    cv::blur(linear, f.mean_linear, window);
+    grey.convertTo(f.mean_grey, CV_32F);
+    cv::blur(f.mean_grey, f.mean_grey, window);
+    return f;
+}
+
+std::optional<GainChange> measure_gain_change(const GainFrame& a, const GainFrame& b) {
+    if (a.grey.size() != b.grey.size()) throw std::invalid_argument("measure_gain_change: two images of one size expected");
     std::vector<cv::Point2f> from;
-    cv::goodFeaturesToTrack(a, from, kMaxCorners, 0.01, 8);
+    cv::goodFeaturesToTrack(a.grey, from, kMaxCorners, 0.01, 8);
     if (from.size() < kMinCorners) return std::nullopt;
     std::vector<cv::Point2f> to;
     std::vector<unsigned char> tracked;
     std::vector<float> error;
-    cv::calcOpticalFlowPyrLK(a, b, from, to, tracked, error, cv::Size(21, 21), 3);
-
-    const cv::Size window(kMeanWindow, kMeanWindow);
-    cv::Mat mean_a, mean_b, grey_a, grey_b;
-    cv::blur(linear_light(a), mean_a, window);
-    cv::blur(linear_light(b), mean_b, window);
-    a.convertTo(grey_a, CV_32F);
-    b.convertTo(grey_b, CV_32F);
-    cv::blur(grey_a, grey_a, window);
-    cv::blur(grey_b, grey_b, window);
+    cv::calcOpticalFlowPyrLK(a.grey, b.grey, from, to, tracked, error, cv::Size(21, 21), 3);
 
     const int margin = kMeanWindow / 2 + 1;
-    auto inside = [&](cv::Point p) { return p.x >= margin && p.y >= margin && p.x < a.cols - margin && p.y < a.rows - margin; };
+    auto inside = [&](cv::Point p) { return p.x >= margin && p.y >= margin && p.x < a.grey.cols - margin && p.y < a.grey.rows - margin; };
     auto usable = [](float grey) { return grey > 20.0f && grey < 235.0f; };
     std::vector<double> ratios;
     for (std::size_t i = 0; i < from.size(); ++i) {
         if (!tracked[i]) continue;
         const cv::Point p(cvRound(from[i].x), cvRound(from[i].y)), q(cvRound(to[i].x), cvRound(to[i].y));
         if (!inside(p) || !inside(q)) continue;
-        if (!usable(grey_a.at<float>(p)) || !usable(grey_b.at<float>(q))) continue;
-        ratios.push_back(std::log(static_cast<double>(mean_b.at<float>(q)) / mean_a.at<float>(p)));
+        if (!usable(a.mean_grey.at<float>(p)) || !usable(b.mean_grey.at<float>(q))) continue;
+        ratios.push_back(std::log(static_cast<double>(b.mean_linear.at<float>(q)) / a.mean_linear.at<float>(p)));
     }
     if (ratios.size() < kMinCorners) return std::nullopt;
     const auto middle = ratios.begin() + static_cast<std::ptrdiff_t>(ratios.size() / 2);
     std::nth_element(ratios.begin(), middle, ratios.end());
     return GainChange{*middle, ratios.size()};
 }
-
-double mean_linear_light(const cv::Mat& grey) { return cv::mean(linear_light(grey))[0]; }
 
 std::optional<ExposureFit> fit_exposure_time_constant(const std::vector<ExposureFrame>& frames) {
     constexpr std::size_t kMinFrames = 10;

@@ -25,12 +25,23 @@ struct GainChange {
     std::size_t corners = 0;  // corners it is the median of
 };
 
-// The common brightness change from grey image `a` to grey image `b` (8-bit, same size), or nothing
-// when fewer than 20 corners could be tracked and compared (a blank or saturated view).
-std::optional<GainChange> measure_gain_change(const cv::Mat& a, const cv::Mat& b);
+// A frame prepared once for the two comparisons it takes part in (the later frame of one pair, the
+// earlier of the next): the grey image and its 7×7 means, in grey levels and in linear light.
+struct GainFrame {
+    cv::Mat grey;                  // 8-bit sRGB, shared with the caller's image
+    cv::Mat mean_grey;             // CV_32F
+    cv::Mat mean_linear;           // CV_32F
+    double mean_linear_light = 0;  // of the whole image (the exposure fit's observed mean)
+};
+// Throws std::invalid_argument unless `grey` is an 8-bit single-channel image.
+GainFrame prepare_gain_frame(const cv::Mat& grey);
 
-// The mean of an 8-bit sRGB grey image in linear light.
-double mean_linear_light(const cv::Mat& grey);
+// The common brightness change from frame `a` to frame `b` (same size, else std::invalid_argument),
+// or nothing when fewer than 20 corners could be tracked and compared (a blank or saturated view).
+std::optional<GainChange> measure_gain_change(const GainFrame& a, const GainFrame& b);
+inline std::optional<GainChange> measure_gain_change(const cv::Mat& a, const cv::Mat& b) {
+    return measure_gain_change(prepare_gain_frame(a), prepare_gain_frame(b));
+}
 
 // The time constant of the renderer's auto-exposure model that best explains a run of consecutive
 // frames (sequence_writer.cpp: frame k's gain is target / r_k, r a first-order average of the earlier
@@ -49,7 +60,7 @@ struct ExposureFit {
 };
 struct ExposureFrame {
     double stamp = 0;        // seconds
-    double mean_linear = 0;  // mean_linear_light of the frame
+    double mean_linear = 0;  // GainFrame::mean_linear_light
     double log_gain = 0;     // measured log brightness change from the frame before (ignored on the first)
     double median_depth_m = std::numeric_limits<double>::quiet_NaN();  // of the frame's valid depth, if any
 };
