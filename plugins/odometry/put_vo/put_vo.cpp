@@ -11,6 +11,7 @@
 // estimation) and counters reported per frame. Parameters and their defaults: README.md.
 #include "dbscan.hpp"
 #include "grid_detector.hpp"
+#include "lk_tracker.hpp"
 #include "rgbd_frame.hpp"    // plugins/common
 #include "rigid_ransac.hpp"  // plugins/common
 #include "rigid_refine.hpp"  // plugins/common
@@ -54,6 +55,9 @@ public:
                  {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
+                 {"lk_implementation", VOBENCH_PARAM_ENUM, "own", 0, 0, "own|opencv",
+                  "own: lk_tracker.hpp, OpenCV's Lucas-Kanade computed with every window row in SIMD lanes (2.5x faster at 7 px); "
+                  "opencv: cv::calcOpticalFlowPyrLK. Same tracks up to float rounding"},
                  {"lk_flow_prior", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "start each LK search at the feature's last image motion"},
                  {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
                   "forward-backward check: drop a track that does not return within this many px (0: off)"},
@@ -107,6 +111,7 @@ public:
         lk_window_ = cv::Size(w, w);
         lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
         lk_fb_threshold_ = p.get_double("lk_fb_threshold");
+        own_lk_ = p.get_string("lk_implementation") == "own";
         flow_prior_ = p.get_bool("lk_flow_prior");
         lk_criteria_ = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, static_cast<int>(p.get_int("lk_iterations")),
                                         p.get_double("lk_epsilon"));
@@ -156,7 +161,9 @@ public:
         const double depth_scale = frame.depth_scale;
         {
             Host::Stage s(host(), "tracking");
-            cv::buildOpticalFlowPyramid(gray_, pyramid_, lk_window_, lk_levels_);
+            // The border both trackers need (lk_tracker reads whole 8-px groups past the window).
+            const int border = put_vo::lk_pyramid_border(lk_window_);
+            cv::buildOpticalFlowPyramid(gray_, pyramid_, cv::Size(border, border), lk_levels_);
         }
         vobench_tracking_status status = VOBENCH_TRACKING_OK;
         if (!have_keyframe_) {
@@ -222,11 +229,9 @@ private:
             to.push_back(f.position + (flow_prior_ ? f.flow : cv::Point2f(0, 0)));
         }
         std::vector<uchar> ok;
-        std::vector<float> err;
         // Constant image velocity: each search starts where the feature would be if it kept last
         // frame's motion, so fast motion needs fewer pyramid levels to stay within reach.
-        cv::calcOpticalFlowPyrLK(prev_pyramid_, pyramid_, from, to, ok, err, lk_window_, lk_levels_, lk_criteria_,
-                                 flow_prior_ ? cv::OPTFLOW_USE_INITIAL_FLOW : 0);
+        lucas_kanade(prev_pyramid_, pyramid_, from, to, ok, lk_levels_, lk_criteria_, flow_prior_);
         // Forward-backward consistency (Kalal et al. 2010): a track that does not lead back to where
         // it started is a mismatch, whatever LK's own status says. The backward pass starts at the
         // original position and works on the base level only, with few iterations: it checks that
@@ -236,7 +241,7 @@ private:
         if (lk_fb_threshold_ > 0) {
             back = from;
             const cv::TermCriteria quick(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, 10, lk_criteria_.epsilon);
-            cv::calcOpticalFlowPyrLK(pyramid_, prev_pyramid_, to, back, back_ok, err, lk_window_, 0, quick, cv::OPTFLOW_USE_INITIAL_FLOW);
+            lucas_kanade(pyramid_, prev_pyramid_, to, back, back_ok, 0, quick, true);
         }
         std::size_t kept = 0;
         if (lk_fb_threshold_ > 0) {  // the tracker's precision, frame by frame (the basis of pixel_noise)
@@ -269,6 +274,25 @@ private:
             std::nth_element(fx.begin(), fx.begin() + fx.size() / 2, fx.end());
             std::nth_element(fy.begin(), fy.begin() + fy.size() / 2, fy.end());
             median_flow_ = {fx[fx.size() / 2], fy[fy.size() / 2]};
+        }
+    }
+
+    // Pyramidal LK with the chosen implementation; `to` holds the starting points when `initial_flow`.
+    void lucas_kanade(const std::vector<cv::Mat>& previous, const std::vector<cv::Mat>& next, const std::vector<cv::Point2f>& from,
+                      std::vector<cv::Point2f>& to, std::vector<uchar>& ok, int levels, const cv::TermCriteria& criteria,
+                      bool initial_flow) const {
+        if (own_lk_) {
+            put_vo::LkOptions o;
+            o.window = lk_window_;
+            o.levels = levels;
+            o.max_iterations = criteria.maxCount;
+            o.epsilon = criteria.epsilon;
+            o.use_initial_flow = initial_flow;
+            put_vo::track_lk(previous, next, from, to, ok, o);
+        } else {
+            std::vector<float> err;
+            cv::calcOpticalFlowPyrLK(previous, next, from, to, ok, err, lk_window_, levels, criteria,
+                                     initial_flow ? cv::OPTFLOW_USE_INITIAL_FLOW : 0);
         }
     }
 
@@ -376,7 +400,7 @@ private:
     int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
-    bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true;
+    bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true, own_lk_ = true;
     double readout_s_ = 0;        // rolling shutter: the colour camera's readout time
     double flow_interval_s_ = 0;  // the time the features' flow was measured over (0: unknown)
     double previous_stamp_ = 0;
