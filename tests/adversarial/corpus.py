@@ -219,7 +219,7 @@ def open3d_params(args, w):
 
 
 def put_vo_params(args, w):
-    """put_vo's noise-model parameters (issue #19): a value outside its declared range, not a number or
+    """put_vo's noise-model and tracker parameters (issue #19): a value outside its declared range, not a number or
     not in the enumeration refuses the config before any cell runs, naming file:line:column, plugin and
     parameter; the healthy value runs."""
     values = {"healthy": ({"pixel_noise": "0.25"}, None),
@@ -233,7 +233,11 @@ def put_vo_params(args, w):
               "field_off": ({"depth_field": "0"}, None),
               "readout_negative": ({"rolling_shutter_ms": "-20"}, r"parameter 'rolling_shutter_ms': '-20' is outside"),
               "readout_text": ({"rolling_shutter_ms": "fast"}, r"parameter 'rolling_shutter_ms': 'fast' is not"),
-              "readout_off": ({"rolling_shutter_ms": "0"}, None)}
+              "readout_off": ({"rolling_shutter_ms": "0"}, None),
+              "lk_unknown": ({"lk_implementation": "cuda"}, r"parameter 'lk_implementation': 'cuda' is not one of own\|opencv"),
+              "lk_opencv": ({"lk_implementation": "opencv"}, None),
+              "lk_even_window": ({"lk_window": "4"}, None),
+              "lk_wide_window": ({"lk_window": "9"}, None)}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")
