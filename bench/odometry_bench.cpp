@@ -11,11 +11,14 @@
 
 #include "dataset_files.hpp"       // plugins/common
 #include "depth_registration.hpp"  // plugins/common
+#include "lk_tracker.hpp"          // plugins/odometry/put_vo
 #include "png_decode.hpp"          // plugins/common
 
 #include <benchmark/benchmark.h>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -202,6 +205,45 @@ void run_decode_real(benchmark::State& state, bool own) {
     }
 }
 
+// The Lucas–Kanade tracker alone, put_vo's settings (7-px window, three levels, 30 iterations or
+// 0.01 px), one core: the real fr1/rpy frames' 400 strongest Shi–Tomasi corners tracked into the next
+// frame, pyramids and corners prepared outside the timing. `own`: lk_tracker.hpp (OpenCV's result to
+// the bit); otherwise cv::calcOpticalFlowPyrLK.
+void run_lucas_kanade(benchmark::State& state, bool own) {
+    const char* env = std::getenv("VOBENCH_DATA_DIR");
+    const fs::path dir = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
+    if (!fs::exists(dir / "rgb")) {
+        state.SkipWithError("no real TUM sample (VOBENCH_DATA_DIR)");
+        return;
+    }
+    cv::setNumThreads(1);
+    std::vector<fs::path> color;
+    for (const auto& e : fs::directory_iterator(dir / "rgb")) color.push_back(e.path());
+    std::sort(color.begin(), color.end());
+    put_vo::LkOptions o;
+    const int border = put_vo::lk_pyramid_border(o.window);
+    std::vector<std::vector<cv::Mat>> pyramids(color.size());
+    std::vector<std::vector<cv::Point2f>> corners(color.size());
+    for (std::size_t k = 0; k < color.size(); ++k) {
+        const cv::Mat gray = cv::imread(color[k].string(), cv::IMREAD_GRAYSCALE);
+        cv::buildOpticalFlowPyramid(gray, pyramids[k], cv::Size(border, border), o.levels);
+        cv::goodFeaturesToTrack(gray, corners[k], 400, 0.01, 8);
+    }
+    const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, o.max_iterations, o.epsilon);
+    std::vector<cv::Point2f> to;
+    std::vector<unsigned char> status;
+    std::vector<float> error;
+    std::size_t k = 0;
+    for (auto _ : state) {
+        const std::size_t a = k++ % (color.size() - 1);
+        if (own)
+            put_vo::track_lk(pyramids[a], pyramids[a + 1], corners[a], to, status, o);
+        else
+            cv::calcOpticalFlowPyrLK(pyramids[a], pyramids[a + 1], corners[a], to, status, error, o.window, o.levels, criteria);
+        benchmark::DoNotOptimize(to.data());
+    }
+}
+
 // The registration alone on OpenCV's threads: state.range(0) of them (the sweep's cells run with
 // limits.threads, 1 by default; `vobench synth` with all).
 void run_registration(benchmark::State& state) {
@@ -252,6 +294,10 @@ BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_depth, "depth")->Unit
 BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_depth, "depth own")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, opencv_imread / tum_fr1_640x480_both, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, readers_png / tum_fr1_640x480_both, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_lucas_kanade, put_vo_lk_tracker / tum_fr1_rpy_400_corners, true)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_lucas_kanade, opencv_calcOpticalFlowPyrLK / tum_fr1_rpy_400_corners, false)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(run_registration)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / kinect1_640x480, "put_vo", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect1_640x480, "opencv_rgbd", "kinect1")->Unit(benchmark::kMillisecond)->UseRealTime();
