@@ -305,6 +305,9 @@ BENCHMARK_CAPTURE(run_odometry, put_vo / kinect2_1920x1080, "put_vo", "kinect2")
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / kinect2_1920x1080, "opencv_rgbd", "kinect2")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, put_vo / tum_fr1_rpy, "put_vo", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / tum_fr1_rpy, "opencv_rgbd", "tum-fr1-rpy")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo_refresh / tum_fr1_rpy, "put_vo", "tum-fr1-rpy", ParamMap{{"profile", "refresh"}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 // put_vo with cv::calcOpticalFlowPyrLK in place of its own bit-identical tracker (lk_tracker.hpp).
 BENCHMARK_CAPTURE(run_odometry, put_vo_opencv_lk / tum_fr1_rpy, "put_vo", "tum-fr1-rpy", ParamMap{{"lk_implementation", "opencv"}})
     ->Unit(benchmark::kMillisecond)
