@@ -237,7 +237,9 @@ def put_vo_params(args, w):
               "lk_unknown": ({"lk_implementation": "cuda"}, r"parameter 'lk_implementation': 'cuda' is not one of own\|opencv"),
               "lk_opencv": ({"lk_implementation": "opencv"}, None),
               "lk_even_window": ({"lk_window": "4"}, None),
-              "lk_wide_window": ({"lk_window": "9"}, None)}
+              "lk_wide_window": ({"lk_window": "9"}, None),
+              "profile_refresh": ({"profile": "refresh"}, None),
+              "profile_unknown": ({"profile": "fast"}, r"parameter 'profile': 'fast' is not one of default\|paper\|refresh")}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")
