@@ -58,8 +58,8 @@ public:
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
                  {"lk_implementation", VOBENCH_PARAM_ENUM, "own", 0, 0, "own|opencv",
-                  "own: lk_tracker.hpp, OpenCV's Lucas-Kanade computed with every window row in SIMD lanes (2.5x faster at 7 px); "
-                  "opencv: cv::calcOpticalFlowPyrLK. Same tracks up to float rounding"},
+                  "own: lk_tracker.hpp, cv::calcOpticalFlowPyrLK's computation to the bit with each window row in SIMD lanes "
+                  "(1.6-1.9x faster at 7 px); opencv: cv::calcOpticalFlowPyrLK itself"},
                  {"lk_flow_prior", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "start each LK search at the feature's last image motion"},
                  {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
                   "forward-backward check: drop a track that does not return within this many px (0: off)"},
