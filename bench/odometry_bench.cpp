@@ -74,13 +74,32 @@ fs::path synthetic(const std::string& name, const std::string& sensor, const std
     return dir;
 }
 
+// The real TUM fr1/rpy sample's folder ($VOBENCH_DATA_DIR, else ../shared/data).
+fs::path real_fr1_rpy() {
+    const char* env = std::getenv("VOBENCH_DATA_DIR");
+    return fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
+}
+
+// The sample's images of one stream ("rgb" or "depth") in stamp order; none (and the benchmark
+// skipped) where the sample is absent.
+std::vector<fs::path> real_fr1_rpy_images(benchmark::State& state, const std::string& stream) {
+    std::vector<fs::path> files;
+    const fs::path dir = real_fr1_rpy() / stream;
+    if (!fs::exists(dir)) {
+        state.SkipWithError("no real TUM sample (VOBENCH_DATA_DIR)");
+        return files;
+    }
+    for (const auto& e : fs::directory_iterator(dir)) files.push_back(e.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
 const Sequence& sequence(const std::string& name) {
     static std::map<std::string, Sequence> cache;
     auto it = cache.find(name);
     if (it != cache.end()) return it->second;
     if (name == "tum-fr1-rpy") {
-        const char* env = std::getenv("VOBENCH_DATA_DIR");
-        const fs::path p = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
+        const fs::path p = real_fr1_rpy();
         return cache[name] = fs::exists(p) ? load(p, {{"intrinsics", "fr1"}}) : Sequence{};
     }
     // "kinect1" / "kinect2": 40 frames of explore1.
@@ -186,17 +205,8 @@ void run_decode_part(benchmark::State& state, const std::string& part) {
 
 // The same on a real TUM fr1/rpy frame (640×480 colour and 16-bit depth, both rows filtered with Sub).
 void run_decode_real(benchmark::State& state, bool own) {
-    const char* env = std::getenv("VOBENCH_DATA_DIR");
-    const fs::path dir = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
-    if (!fs::exists(dir / "rgb")) {
-        state.SkipWithError("no real TUM sample (VOBENCH_DATA_DIR)");
-        return;
-    }
-    std::vector<fs::path> color, depth;
-    for (const auto& e : fs::directory_iterator(dir / "rgb")) color.push_back(e.path());
-    for (const auto& e : fs::directory_iterator(dir / "depth")) depth.push_back(e.path());
-    std::sort(color.begin(), color.end());
-    std::sort(depth.begin(), depth.end());
+    const std::vector<fs::path> color = real_fr1_rpy_images(state, "rgb"), depth = real_fr1_rpy_images(state, "depth");
+    if (color.size() <= 10 || depth.size() <= 10) return;
     for (auto _ : state) {
         benchmark::DoNotOptimize(
             (own ? files::decode_png(color[10], cv::IMREAD_COLOR) : cv::imread(color[10].string(), cv::IMREAD_COLOR)).data);
@@ -210,16 +220,9 @@ void run_decode_real(benchmark::State& state, bool own) {
 // frame, pyramids and corners prepared outside the timing. `own`: lk_tracker.hpp (OpenCV's result to
 // the bit); otherwise cv::calcOpticalFlowPyrLK.
 void run_lucas_kanade(benchmark::State& state, bool own) {
-    const char* env = std::getenv("VOBENCH_DATA_DIR");
-    const fs::path dir = fs::path(env ? env : VOBENCH_TEST_DATA_DIR) / "real" / "rgbd_dataset_freiburg1_rpy";
-    if (!fs::exists(dir / "rgb")) {
-        state.SkipWithError("no real TUM sample (VOBENCH_DATA_DIR)");
-        return;
-    }
+    const std::vector<fs::path> color = real_fr1_rpy_images(state, "rgb");
+    if (color.size() < 2) return;
     cv::setNumThreads(1);
-    std::vector<fs::path> color;
-    for (const auto& e : fs::directory_iterator(dir / "rgb")) color.push_back(e.path());
-    std::sort(color.begin(), color.end());
     put_vo::LkOptions o;
     const int border = put_vo::lk_pyramid_border(o.window);
     std::vector<std::vector<cv::Mat>> pyramids(color.size());
