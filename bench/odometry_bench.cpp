@@ -205,8 +205,10 @@ void run_decode_part(benchmark::State& state, const std::string& part) {
 
 // The same on a real TUM fr1/rpy frame (640×480 colour and 16-bit depth, both rows filtered with Sub).
 void run_decode_real(benchmark::State& state, bool own) {
-    const std::vector<fs::path> color = real_fr1_rpy_images(state, "rgb"), depth = real_fr1_rpy_images(state, "depth");
-    if (color.size() <= 10 || depth.size() <= 10) return;
+    const std::vector<fs::path> color = real_fr1_rpy_images(state, "rgb");
+    if (color.size() <= 10) return;
+    const std::vector<fs::path> depth = real_fr1_rpy_images(state, "depth");
+    if (depth.size() <= 10) return;
     for (auto _ : state) {
         benchmark::DoNotOptimize(
             (own ? files::decode_png(color[10], cv::IMREAD_COLOR) : cv::imread(color[10].string(), cv::IMREAD_COLOR)).data);

@@ -22,21 +22,32 @@ TrackResult track(const std::string& path, const std::string& algorithm, const P
 
 }  // namespace
 
-// Issue #19: put_vo as accurate as RgbdOdometry on real frames. Measured here (seed 1, paper RPE over 4
-// frames): 0.0152 m against 0.0155 m; over seeds 1-10 in configs/real_sample.yaml put_vo is ahead in ATE
-// and RPE per second, level over 4 frames. The 5 % allowance is for other machines' OpenCV builds.
-TEST_CASE("put_vo tracks every frame of fr1/rpy, no worse than OpenCV RgbdOdometry's RPE", "[put_vo][reference]") {
+// Issue #19: put_vo against RgbdOdometry on the real sample (seed 1, paper RPE over 4 frames), one
+// RgbdOdometry run for both profiles. The default: 0.0147 m against 0.0155 m — level, and only just
+// (one-step changes of the feature-pool parameters move it by up to 75 %; put_vo README, "How far the
+// sample's figures move"); the 5 % allowance is for other machines' OpenCV builds. profile=refresh
+// (every frame a key frame, the pool refilled every frame): 0.0108-0.0119 m over nine nearby settings
+// (README, "profile=refresh") — ahead by more than its spread; 0.85 leaves room for other builds.
+TEST_CASE("put_vo on fr1/rpy: the default no worse than OpenCV RgbdOdometry's RPE, profile=refresh ahead of it", "[put_vo][reference]") {
     VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
-    const TrackResult put = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}});
     const TrackResult cv = track(dir.string(), "opencv_rgbd", {{"intrinsics", "fr1"}});
-    REQUIRE(put.error.empty());
-    REQUIRE(put.evaluation);
     REQUIRE(cv.evaluation);
-    CHECK(put.frames.size() == 90);
-    CHECK(put.failed_frames == 0);
-    const double ratio = put.evaluation->rpe->trans.rmse / cv.evaluation->rpe->trans.rmse;
-    INFO("RPE put_vo " << put.evaluation->rpe->trans.rmse << " m, RgbdOdometry " << cv.evaluation->rpe->trans.rmse << " m");
-    CHECK(ratio <= 1.05);
+    const double cv_trans = cv.evaluation->rpe->trans.rmse;
+    for (const std::string profile : {"default", "refresh"}) {
+        const TrackResult put = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}}, {{"profile", profile}});
+        INFO("profile " << profile << ": RPE " << (put.evaluation ? put.evaluation->rpe->trans.rmse : -1) << " m, RgbdOdometry " << cv_trans
+                        << " m");
+        REQUIRE(put.error.empty());
+        REQUIRE(put.evaluation);
+        CHECK(put.frames.size() == 90);
+        CHECK(put.failed_frames == 0);
+        if (profile == "default") {
+            CHECK(put.evaluation->rpe->trans.rmse <= 1.05 * cv_trans);
+        } else {
+            CHECK(put.evaluation->rpe->trans.rmse <= 0.85 * cv_trans);
+            CHECK(put.evaluation->rpe->rot_deg.rmse <= cv.evaluation->rpe->rot_deg.rmse);
+        }
+    }
 }
 
 // profile=paper turns off what the plugin adds to §5.1 (flow prior, forward-backward check, depth
@@ -55,24 +66,6 @@ TEST_CASE("put_vo profile=paper runs the paper's pipeline: a different trajector
     CHECK(paper.evaluation->rpe->trans.rmse != def.evaluation->rpe->trans.rmse);
     INFO("RPE paper " << paper.evaluation->rpe->trans.rmse << " m, default " << def.evaluation->rpe->trans.rmse << " m");
     CHECK(paper.evaluation->rpe->trans.rmse < 2 * def.evaluation->rpe->trans.rmse);
-}
-
-// profile=refresh (every frame a key frame, the pool refilled every frame): measured on the sample
-// over nine nearby settings (README, "profile=refresh"), RPE over 4 frames 0.0108-0.0119 m against
-// RgbdOdometry's 0.0156 m — ahead by more than its spread, where the default ties. 0.85 leaves room
-// for other machines' OpenCV builds.
-TEST_CASE("put_vo profile=refresh is ahead of OpenCV RgbdOdometry's RPE on fr1/rpy", "[put_vo][reference]") {
-    VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
-    const TrackResult refresh = track(dir.string(), "put_vo", {{"intrinsics", "fr1"}}, {{"profile", "refresh"}});
-    const TrackResult cv = track(dir.string(), "opencv_rgbd", {{"intrinsics", "fr1"}});
-    REQUIRE(refresh.error.empty());
-    REQUIRE(refresh.evaluation);
-    REQUIRE(cv.evaluation);
-    CHECK(refresh.frames.size() == 90);
-    CHECK(refresh.failed_frames == 0);
-    INFO("RPE refresh " << refresh.evaluation->rpe->trans.rmse << " m, RgbdOdometry " << cv.evaluation->rpe->trans.rmse << " m");
-    CHECK(refresh.evaluation->rpe->trans.rmse <= 0.85 * cv.evaluation->rpe->trans.rmse);
-    CHECK(refresh.evaluation->rpe->rot_deg.rmse <= cv.evaluation->rpe->rot_deg.rmse);
 }
 
 TEST_CASE("put_vo is deterministic: same input and seed, bit-identical trajectory", "[put_vo][determinism]") {
