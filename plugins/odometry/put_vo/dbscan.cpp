@@ -1,32 +1,18 @@
 #include "dbscan.hpp"
 
-#include <cmath>
-#include <cstdint>
-#include <unordered_map>
+#include "point_buckets.hpp"
 
 namespace put_vo {
 
 std::vector<cv::KeyPoint> dbscan_strongest(const std::vector<cv::KeyPoint>& points, double eps, int min_points) {
     const std::size_t n = points.size();
-    auto key = [eps](float x, float y) {
-        return (static_cast<int64_t>(std::floor(x / eps)) << 32) ^ (static_cast<int64_t>(std::floor(y / eps)) & 0xffffffff);
-    };
-    std::unordered_map<int64_t, std::vector<std::size_t>> grid;
-    for (std::size_t i = 0; i < n; ++i) grid[key(points[i].pt.x, points[i].pt.y)].push_back(i);
+    std::vector<cv::Point2f> positions(n);
+    for (std::size_t i = 0; i < n; ++i) positions[i] = points[i].pt;
+    const PointBuckets buckets(positions, eps);
     const double eps2 = eps * eps;
     auto neighbours = [&](std::size_t i, std::vector<std::size_t>& out) {
         out.clear();
-        const int64_t cx = static_cast<int64_t>(std::floor(points[i].pt.x / eps)),
-                      cy = static_cast<int64_t>(std::floor(points[i].pt.y / eps));
-        for (int64_t dx = -1; dx <= 1; ++dx)
-            for (int64_t dy = -1; dy <= 1; ++dy) {
-                auto it = grid.find(((cx + dx) << 32) ^ ((cy + dy) & 0xffffffff));
-                if (it == grid.end()) continue;
-                for (std::size_t j : it->second) {
-                    const double ddx = points[i].pt.x - points[j].pt.x, ddy = points[i].pt.y - points[j].pt.y;
-                    if (ddx * ddx + ddy * ddy <= eps2) out.push_back(j);
-                }
-            }
+        buckets.for_each_within(positions[i], eps2, [&out](std::size_t j) { out.push_back(j); });
     };
     constexpr int kUnvisited = -2, kNoise = -1;
     std::vector<int> label(n, kUnvisited);

@@ -1,45 +1,116 @@
 #include "grid_detector.hpp"
 
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
+#include <cstdint>
 
 namespace put_vo {
 
 GridDetector::GridDetector(const GridDetectorOptions& o) : options_(o) {
     const int cells = o.grid * o.grid;
     thresholds_.assign(static_cast<std::size_t>(cells), o.threshold_init);
-    for (int i = 0; i < cells; ++i)
-        // One pyramid level: tracking, not matching, follows; FAST with Harris ranking as ORB does.
-        orbs_.push_back(cv::ORB::create(2 * o.per_cell_target, 1.2f, 1, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, o.threshold_init));
+    options_.border_px = std::max(options_.border_px, 4);  // the Harris window and its Sobel taps stay inside
+    if (o.kind == CornerKind::orb)
+        for (int i = 0; i < cells; ++i)
+            // One pyramid level: tracking, not matching, follows; FAST with Harris ranking as ORB does.
+            orbs_.push_back(cv::ORB::create(2 * o.per_cell_target, 1.2f, 1, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, o.threshold_init));
 }
 
 std::vector<cv::KeyPoint> GridDetector::detect(const cv::Mat& gray) {
     std::vector<cv::KeyPoint> all;
+    if (options_.kind == CornerKind::fast_harris) {
+        // Once for the image: each candidate's Harris window then sums precomputed gradients.
+        cv::Sobel(gray, gx_, CV_16S, 1, 0, 3);
+        cv::Sobel(gray, gy_, CV_16S, 0, 1, 3);
+    }
     const int g = options_.grid;
     for (int row = 0; row < g; ++row) {
         for (int col = 0; col < g; ++col) {
             const int cell = row * g + col;
-            const int x0 = std::max(0, col * gray.cols / g - options_.overlap_px);
-            const int x1 = std::min(gray.cols, (col + 1) * gray.cols / g + options_.overlap_px);
-            const int y0 = std::max(0, row * gray.rows / g - options_.overlap_px);
-            const int y1 = std::min(gray.rows, (row + 1) * gray.rows / g + options_.overlap_px);
-            orbs_[static_cast<std::size_t>(cell)]->setFastThreshold(thresholds_[static_cast<std::size_t>(cell)]);
+            const int x0 = col * gray.cols / g, x1 = (col + 1) * gray.cols / g;
+            const int y0 = row * gray.rows / g, y1 = (row + 1) * gray.rows / g;
             std::vector<cv::KeyPoint> kps;
-            orbs_[static_cast<std::size_t>(cell)]->detect(gray(cv::Rect(x0, y0, x1 - x0, y1 - y0)), kps);
-            // Adapt the threshold for the next key frame: too few → lower it, plenty → raise it.
-            int& t = thresholds_[static_cast<std::size_t>(cell)];
-            if (static_cast<int>(kps.size()) < options_.per_cell_target)
-                t = std::max(options_.threshold_min, t - 3);
-            else if (static_cast<int>(kps.size()) >= 2 * options_.per_cell_target)
-                t = std::min(options_.threshold_max, t + 3);
+            if (options_.kind == CornerKind::orb) {
+                const int o = options_.overlap_px;
+                const int wx0 = std::max(0, x0 - o), wx1 = std::min(gray.cols, x1 + o);
+                const int wy0 = std::max(0, y0 - o), wy1 = std::min(gray.rows, y1 + o);
+                kps = detect_cell_orb(gray, cell, cv::Rect(wx0, wy0, wx1 - wx0, wy1 - wy0));
+            } else {
+                const int b = options_.border_px;
+                const int ax0 = std::max(x0, b), ax1 = std::min(x1, gray.cols - b);
+                const int ay0 = std::max(y0, b), ay1 = std::min(y1, gray.rows - b);
+                if (ax1 > ax0 && ay1 > ay0) kps = detect_cell_fast_harris(gray, cell, cv::Rect(ax0, ay0, ax1 - ax0, ay1 - ay0));
+            }
             for (cv::KeyPoint& k : kps) {
-                k.pt.x += static_cast<float>(x0);
-                k.pt.y += static_cast<float>(y0);
                 k.class_id = cell;
                 all.push_back(k);
             }
         }
     }
     return all;
+}
+
+std::vector<cv::KeyPoint> GridDetector::detect_cell_orb(const cv::Mat& gray, int cell, cv::Rect window) {
+    cv::ORB& orb = *orbs_[static_cast<std::size_t>(cell)];
+    orb.setFastThreshold(thresholds_[static_cast<std::size_t>(cell)]);
+    std::vector<cv::KeyPoint> kps;
+    orb.detect(gray(window), kps);
+    adapt_threshold(cell, kps.size());
+    for (cv::KeyPoint& k : kps) k.pt += cv::Point2f(static_cast<float>(window.x), static_cast<float>(window.y));
+    return kps;
+}
+
+// ORB's selection (FAST corners, the 2n strongest by FAST score, of those the n best by Harris score)
+// over the cell's own pixels. FAST reads a 3-px circle, so it is given the area grown by 3 px and
+// only the corners inside the area are kept.
+std::vector<cv::KeyPoint> GridDetector::detect_cell_fast_harris(const cv::Mat& gray, int cell, cv::Rect area) {
+    const cv::Rect grown = (area + cv::Size(6, 6) - cv::Point(3, 3)) & cv::Rect(0, 0, gray.cols, gray.rows);
+    std::vector<cv::KeyPoint> found;
+    cv::FAST(gray(grown), found, thresholds_[static_cast<std::size_t>(cell)], true);
+    std::vector<cv::KeyPoint> kps;
+    kps.reserve(found.size());
+    for (cv::KeyPoint k : found) {
+        k.pt += cv::Point2f(static_cast<float>(grown.x), static_cast<float>(grown.y));
+        if (area.contains(cv::Point(static_cast<int>(k.pt.x), static_cast<int>(k.pt.y)))) kps.push_back(k);
+    }
+    const int n = 2 * options_.per_cell_target;  // what ORB is asked for in the other mode
+    adapt_threshold(cell, std::min(kps.size(), static_cast<std::size_t>(n)));
+    cv::KeyPointsFilter::retainBest(kps, 2 * n);
+    for (cv::KeyPoint& k : kps)
+        k.response = static_cast<float>(harris_response(gx_, gy_, static_cast<int>(k.pt.x), static_cast<int>(k.pt.y)));
+    cv::KeyPointsFilter::retainBest(kps, n);
+    return kps;
+}
+
+// Too few corners → a lower threshold for the next key frame; plenty → a higher one.
+void GridDetector::adapt_threshold(int cell, std::size_t found) {
+    int& t = thresholds_[static_cast<std::size_t>(cell)];
+    if (static_cast<int>(found) < options_.per_cell_target)
+        t = std::max(options_.threshold_min, t - 3);
+    else if (static_cast<int>(found) >= 2 * options_.per_cell_target)
+        t = std::min(options_.threshold_max, t + 3);
+}
+
+double harris_response(const cv::Mat& gx, const cv::Mat& gy, int x, int y, int block) {
+    const int r = block / 2;
+    std::int64_t sxx = 0, syy = 0, sxy = 0;
+    for (int v = y - r; v <= y + r; ++v) {
+        const short* dx = gx.ptr<short>(v) + x - r;
+        const short* dy = gy.ptr<short>(v) + x - r;
+        int row_xx = 0, row_yy = 0, row_xy = 0;  // a row's sums fit: 7 · 1020² < 2³¹
+        for (int u = 0; u < block; ++u) {
+            row_xx += dx[u] * dx[u];
+            row_yy += dy[u] * dy[u];
+            row_xy += dx[u] * dy[u];
+        }
+        sxx += row_xx;
+        syy += row_yy;
+        sxy += row_xy;
+    }
+    const double a = static_cast<double>(sxx), b = static_cast<double>(syy), c = static_cast<double>(sxy);
+    return a * b - c * c - 0.04 * (a + b) * (a + b);
 }
 
 }  // namespace put_vo

@@ -1,6 +1,11 @@
 // grid_detector.hpp — ORB key points in a 4×4 grid of slightly overlapping sub-images, each with its
 // own FAST threshold adapted frame to frame so that every cell yields a similar number of features
 // (Kraft et al. 2016, §5.1: even spatial coverage for a well-conditioned motion estimate).
+//
+// Two ways to find the corners of a cell: ORB's detector (the paper's), or the same selection
+// without what tracking does not use — FAST corners ranked by their Harris score as ORB ranks them,
+// but without ORB's orientation and its 31-px descriptor border, so cells need not overlap and
+// every pixel is searched once (half the detection time on 640×480 frames).
 #pragma once
 
 #include <opencv2/features2d.hpp>
@@ -9,9 +14,13 @@
 
 namespace put_vo {
 
+enum class CornerKind { orb, fast_harris };
+
 struct GridDetectorOptions {
+    CornerKind kind = CornerKind::orb;
     int grid = 4;              // cells per side
-    int overlap_px = 32;       // ORB ignores ~31 px inside each window's border: overlap by more
+    int overlap_px = 32;       // orb: ORB ignores ~31 px inside each window's border: overlap by more
+    int border_px = 16;        // fast_harris: no corner closer than this to the image's edge (at least 4)
     int per_cell_target = 40;  // features wanted per cell
     int threshold_init = 20, threshold_min = 5, threshold_max = 80;
 };
@@ -23,9 +32,20 @@ public:
     std::vector<cv::KeyPoint> detect(const cv::Mat& gray);
 
 private:
+    std::vector<cv::KeyPoint> detect_cell_orb(const cv::Mat& gray, int cell, cv::Rect window);
+    std::vector<cv::KeyPoint> detect_cell_fast_harris(const cv::Mat& gray, int cell, cv::Rect area);
+    void adapt_threshold(int cell, std::size_t found);
+
     GridDetectorOptions options_;
     std::vector<int> thresholds_;  // per cell, carried between calls
     std::vector<cv::Ptr<cv::ORB>> orbs_;
+    cv::Mat gx_, gy_;  // fast_harris: the current image's Sobel derivatives
 };
+
+// The Harris & Stephens (1988) corner response det(M) − k·trace(M)² at pixel (x, y), M the sum over
+// a block×block window of the gradients' outer products, k = 0.04 (ORB's HARRIS_K); gx, gy are the
+// image's 3×3 Sobel derivatives (CV_16S), as ORB and cv::cornerHarris take them. Only its order
+// matters here, so it is left unnormalised. (x, y) must lie block/2 px inside gx and gy.
+double harris_response(const cv::Mat& gx, const cv::Mat& gy, int x, int y, int block = 7);
 
 }  // namespace put_vo
