@@ -313,6 +313,9 @@ BENCHMARK_CAPTURE(run_odometry, opencv_rgbd / tum_fr1_rpy, "opencv_rgbd", "tum-f
 BENCHMARK_CAPTURE(run_odometry, put_vo_refresh / tum_fr1_rpy, "put_vo", "tum-fr1-rpy", ParamMap{{"profile", "refresh"}})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
+BENCHMARK_CAPTURE(run_odometry, put_vo_parallax / tum_fr1_rpy, "put_vo", "tum-fr1-rpy", ParamMap{{"profile", "parallax"}})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 // put_vo with cv::calcOpticalFlowPyrLK in place of its own bit-identical tracker (lk_tracker.hpp).
 BENCHMARK_CAPTURE(run_odometry, put_vo_opencv_lk / tum_fr1_rpy, "put_vo", "tum-fr1-rpy", ParamMap{{"lk_implementation", "opencv"}})
     ->Unit(benchmark::kMillisecond)

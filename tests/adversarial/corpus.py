@@ -239,7 +239,14 @@ def put_vo_params(args, w):
               "lk_even_window": ({"lk_window": "4"}, None),
               "lk_wide_window": ({"lk_window": "9"}, None),
               "profile_refresh": ({"profile": "refresh"}, None),
-              "profile_unknown": ({"profile": "fast"}, r"parameter 'profile': 'fast' is not one of default\|paper\|refresh")}
+              "profile_parallax": ({"profile": "parallax"}, None),
+              "profile_unknown": ({"profile": "fast"}, r"parameter 'profile': 'fast' is not one of default\|paper\|refresh\|parallax"),
+              "detector_fast_harris": ({"detector": "fast_harris"}, None),
+              "detector_unknown": ({"detector": "sift"}, r"parameter 'detector': 'sift' is not one of orb\|fast_harris"),
+              "parallax_negative": ({"keyframe_parallax": "-10"}, r"parameter 'keyframe_parallax': '-10' is outside"),
+              "parallax_nan": ({"keyframe_parallax": "nan"}, r"parameter 'keyframe_parallax': 'nan' is not a finite number"),
+              "refill_below_negative": ({"refill_below": "-2"}, r"parameter 'refill_below': '-2' is outside"),
+              "refill_every_keyframe": ({"refill_below": "500", "keyframe_parallax": "10"}, None)}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")

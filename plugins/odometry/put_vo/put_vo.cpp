@@ -12,6 +12,7 @@
 #include "dbscan.hpp"
 #include "grid_detector.hpp"
 #include "lk_tracker.hpp"
+#include "point_buckets.hpp"
 #include "rgbd_frame.hpp"    // plugins/common
 #include "rigid_ransac.hpp"  // plugins/common
 #include "rigid_refine.hpp"  // plugins/common
@@ -26,6 +27,7 @@
 #include <cmath>
 #include <memory>
 #include <random>
+#include <string>
 
 namespace {
 
@@ -40,12 +42,18 @@ public:
                 "PUT RGB-D VO (Kraft et al. 2016): grid ORB + DBSCAN, pyramidal LK over key frames, 3-point RANSAC + Umeyama.",
                 "MIT",
                 "https://doi.org/10.1007/s00138-016-0802-6",
-                {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper|refresh",
+                {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper|refresh|parallax",
                   "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold, depth_weighting and "
-                  "depth_interpolation off, rolling_shutter_ms 0, refinement=umeyama, whatever they are set to); refresh: every "
+                  "depth_interpolation off, rolling_shutter_ms 0, refinement=umeyama, detector=orb, keyframe_parallax 0, refill_below = "
+                  "redetect_below, whatever they are set to); refresh: every "
                   "frame a key frame with its feature pool refilled to max_features (keyframe_interval 1, redetect_below = "
-                  "max_features): more accurate and steadier under fast motion, at about twice the time"},
+                  "max_features); parallax: a key frame every keyframe_interval frames or as soon as the features moved 10 px, "
+                  "its pool refilled to max_features, corners by fast_harris (keyframe_parallax 10, refill_below = max_features, "
+                  "detector=fast_harris). refresh and parallax: more accurate and steadier under fast motion, at about twice the time"},
                  {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
+                 {"detector", VOBENCH_PARAM_ENUM, "orb", 0, 0, "orb|fast_harris",
+                  "orb: ORB key points in overlapping grid cells (the paper); fast_harris: the same selection (FAST corners "
+                  "ranked by Harris score) without ORB's orientation and 31-px border, each pixel searched once"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
                  {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
                  {"fast_threshold", VOBENCH_PARAM_INT, "20", 1, 200, "", "initial FAST threshold of every cell"},
@@ -53,6 +61,11 @@ public:
                  {"dbscan_min_points", VOBENCH_PARAM_INT, "2", 1, 100, "", "DBSCAN minPts"},
                  {"redetect_below", VOBENCH_PARAM_INT, "150", 0, 5000, "", "detect new features when fewer are tracked"},
                  {"keyframe_interval", VOBENCH_PARAM_INT, "4", 1, 100, "", "a new key frame every n frames (the paper's n)"},
+                 {"keyframe_parallax", VOBENCH_PARAM_DOUBLE, "0", 0, 1000, "",
+                  "also a new key frame as soon as the tracked features' median image motion since the key frame exceeds "
+                  "this, px at 640 px width (0: off)"},
+                 {"refill_below", VOBENCH_PARAM_INT, "-1", -1, 5000, "",
+                  "at a key frame, top the pool up to max_features when fewer are tracked (-1: redetect_below)"},
                  {"lk_window", VOBENCH_PARAM_INT, "7", 3, 61, "", "Lucas-Kanade window, px (odd)"},
                  {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
@@ -103,12 +116,20 @@ public:
         g.overlap_px = static_cast<int>(p.get_int("cell_overlap"));
         g.threshold_init = static_cast<int>(p.get_int("fast_threshold"));
         g.per_cell_target = std::max(4, 2 * max_features_ / (g.grid * g.grid));
+        const std::string profile = p.get_string("profile");
+        const bool fast_harris = profile == "parallax" || p.get_string("detector") == "fast_harris";
+        g.kind = fast_harris && profile != "paper" ? put_vo::CornerKind::fast_harris : put_vo::CornerKind::orb;
+        // No corner so near the edge that its LK window leaves the image on the coarsest level.
+        g.border_px = (static_cast<int>(p.get_int("lk_window")) / 2 + 1) << static_cast<int>(p.get_int("lk_levels"));
         detector_ = std::make_unique<put_vo::GridDetector>(g);
         // ε is given for 640 px images; features spread with resolution (Kinect v2: ×3).
         eps_ = p.get_double("dbscan_eps") * camera.width / 640.0;
         min_points_ = static_cast<int>(p.get_int("dbscan_min_points"));
         redetect_below_ = static_cast<int>(p.get_int("redetect_below"));
         keyframe_interval_ = static_cast<int>(p.get_int("keyframe_interval"));
+        keyframe_parallax_px_ = p.get_double("keyframe_parallax") * camera.width / 640.0;
+        refill_below_ = static_cast<int>(p.get_int("refill_below"));
+        if (refill_below_ < 0) refill_below_ = redetect_below_;
         const int w = static_cast<int>(p.get_int("lk_window"));
         lk_window_ = cv::Size(w, w);
         lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
@@ -134,17 +155,24 @@ public:
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
         readout_s_ = p.get_double("rolling_shutter_ms") * 1e-3;
-        if (p.get_string("profile") == "paper") {
+        if (profile == "paper") {
             flow_prior_ = false;
             lk_fb_threshold_ = 0;
             ransac_.depth_weighted_refinement = false;
             noise_refinement_ = false;
             depth_range_.interpolate = false;
             readout_s_ = 0;
+            keyframe_parallax_px_ = 0;
+            refill_below_ = redetect_below_;
         }
-        if (p.get_string("profile") == "refresh") {
+        if (profile == "refresh") {
             keyframe_interval_ = 1;
             redetect_below_ = max_features_;
+            refill_below_ = max_features_;
+        }
+        if (profile == "parallax") {
+            keyframe_parallax_px_ = 10.0 * camera.width / 640.0;
+            refill_below_ = max_features_;
         }
         rng_.seed(seed);
         reset();
@@ -182,6 +210,11 @@ public:
             flow_interval_s_ = interval > 0 && interval < 1.0 ? interval : 0;
             ++frames_since_keyframe_;
             bool keyframe_due = frames_since_keyframe_ >= keyframe_interval_ || static_cast<int>(tracked_.size()) < redetect_below_;
+            if (keyframe_parallax_px_ > 0) {
+                const double parallax = parallax_px();
+                host().counter("parallax_px", parallax);
+                keyframe_due = keyframe_due || parallax > keyframe_parallax_px_;
+            }
             if (keyframe_due || estimate_every_frame_) {
                 Eigen::Isometry3d keyframe_from_current;
                 if (estimate(depth, depth_scale, keyframe_from_current)) {
@@ -204,8 +237,19 @@ private:
     struct Feature {
         cv::Point2f position;  // in the current frame (distorted pixels)
         float response;
-        cv::Point2f flow{0, 0};  // its image motion over the last frame: the next search starts there
+        cv::Point2f flow{0, 0};    // its image motion over the last frame: the next search starts there
+        cv::Point2f origin{0, 0};  // where it was in the key frame
     };
+
+    // The median image motion of the tracked features since the key frame, px.
+    double parallax_px() const {
+        if (tracked_.empty()) return 0;
+        std::vector<double> d;
+        d.reserve(tracked_.size());
+        for (const Feature& f : tracked_) d.push_back(cv::norm(f.position - f.origin));
+        std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
+        return d[d.size() / 2];
+    }
 
     // The 3-D points of `features`: the depth where the image shows them, the ray through where they
     // were when the middle row was exposed (rolling shutter, rgbd::at_middle_row). The lens's local
@@ -349,7 +393,8 @@ private:
         have_keyframe_ = true;
         keyframe_points_.clear();
         keep_features_with_depth(depth, scale, tracked_, keyframe_points_);
-        if (static_cast<int>(tracked_.size()) >= redetect_below_) return;
+        for (Feature& f : tracked_) f.origin = f.position;
+        if (static_cast<int>(tracked_.size()) >= refill_below_) return;
         std::vector<cv::KeyPoint> keypoints;
         {
             Host::Stage s(host(), "detection");
@@ -366,17 +411,17 @@ private:
             });
             // New features away from those still tracked.
             const double min_d2 = std::max(4.0, eps_ * eps_);
+            std::vector<cv::Point2f> kept_at;
+            for (const Feature& f : tracked_) kept_at.push_back(f.position);
+            const put_vo::PointBuckets tracked_buckets(kept_at, std::sqrt(min_d2));
             for (const cv::KeyPoint& k : keypoints) {
                 if (static_cast<int>(tracked_.size() + added.size()) >= max_features_) break;
                 bool near = false;
-                for (const Feature& f : tracked_) {
-                    const double dx = f.position.x - k.pt.x, dy = f.position.y - k.pt.y;
-                    if (dx * dx + dy * dy < min_d2) {
-                        near = true;
-                        break;
-                    }
-                }
-                if (!near) added.push_back({k.pt, k.response, median_flow_});
+                tracked_buckets.for_each_within(k.pt, min_d2, [&](std::size_t j) {
+                    const cv::Point2f d = kept_at[j] - k.pt;
+                    near = near || d.x * d.x + d.y * d.y < min_d2;  // strictly nearer, as before the buckets
+                });
+                if (!near) added.push_back({k.pt, k.response, median_flow_, k.pt});
             }
         }
         std::vector<Eigen::Vector3d> added_points;
@@ -403,7 +448,9 @@ private:
     cv::Matx33d K_;
     cv::Mat dist_;
     std::unique_ptr<put_vo::GridDetector> detector_;
-    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
+    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, refill_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2,
+        min_inliers_ = 10;
+    double keyframe_parallax_px_ = 0;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
     bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true, own_lk_ = true;
