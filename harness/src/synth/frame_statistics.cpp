@@ -7,6 +7,7 @@
 #include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
 #include "synth/stamp_latency.hpp"
+#include "synth/track_precision.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
 
@@ -347,6 +348,8 @@ public:
                 throw std::runtime_error((folder / rgb[index].path).string() + ": not the size of the colour image before it");
             change = measure_gain_change(last_, current);
             if (change) changes_.push_back(100.0 * std::abs(change->log_ratio));
+            // The same pair gives the tracker's precision (track_precision.hpp).
+            if (const auto fb = forward_backward_median_px(last_.grey, grey)) precision_.push_back(*fb);
         }
         // The exposure fit needs an unbroken run: every frame's change from the one before.
         if (!exposure_.empty() && !(follows && change)) run_broken_ = true;
@@ -357,6 +360,14 @@ public:
         last_ = std::move(current);
     }
     void report(Accumulator& acc) const {
+        if (!precision_.empty()) {
+            auto sorted = precision_;
+            const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
+            std::nth_element(sorted.begin(), middle, sorted.end());
+            acc.mean("image.track_fb_median_px",
+                     "Lucas–Kanade forward–backward distance from the frame before (7×7 window, 3 levels), px (median over frames)",
+                     *middle);
+        }
         if (!changes_.empty()) {
             auto sorted = changes_;
             std::sort(sorted.begin(), sorted.end());
@@ -397,6 +408,7 @@ private:
     std::size_t last_index_ = static_cast<std::size_t>(-1);
     GainFrame last_;  // the frame measured last
     std::vector<double> changes_;
+    std::vector<double> precision_;  // forward–backward distance, px, per measured pair
     std::vector<ExposureFrame> exposure_;
     bool run_broken_ = false;
 };
