@@ -58,6 +58,12 @@ TEST_CASE("stats: noise, missing depth, plane-fit noise and stamp offsets of fra
     CHECK(value(s, "depth_noise_mm.2_3m") == Approx(5.0).epsilon(0.1));
     CHECK(value(s, "stamps.offset_mean_ms") == Approx(10.0).epsilon(1e-3));
     CHECK(value(s, "image.fast_corners") < 50);  // a ramp with noise has few corners at threshold 20
+    // Noise independent from pixel to pixel, about its 3-px blur: σ²(1 − 1/(2π·9)) + 1/12 for the
+    // rounding ≈ 8.8, and barely correlated with the neighbours (measured 0.05: the flat pixels are
+    // chosen by a smoothed gradient, which favours noise that happens to be smooth).
+    CHECK(value(s, "image.flat_noise_ms") == Approx(8.8).epsilon(0.1));
+    CHECK(std::abs(value(s, "image.flat_noise_corr_right")) < 0.06);
+    CHECK(std::abs(value(s, "image.flat_noise_corr_below")) < 0.06);
 }
 
 TEST_CASE("stats on the real TUM sample: missing depth equals a direct count over its pairs", "[synth][stats][reference]") {

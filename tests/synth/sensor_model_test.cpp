@@ -364,3 +364,49 @@ TEST_CASE("Kinect v1 loses the depth of a dark wall in patches of its correlatio
     CHECK(by_pixel.speckle > 3 * window.speckle);
     CHECK(kinect2().dropout_window_px == 1);  // time of flight measures every pixel for itself
 }
+
+TEST_CASE("mosaic_noise: the noise lands on the RGGB mosaic and is interpolated with it, on by default, Kinect v1 only",
+          "[synth][sensor]") {
+    TestRig rig(2.0);
+    const auto render = [&](const std::string& effects) {
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects(effects);
+        return Renderer(rig.scene, sensor, 5).render(0, rig.pose, rig.pose, 0.1, false).color;
+    };
+    const cv::Mat clean = render("none"), per_pixel = render("none,+image_noise"), mosaic = render("none,+image_noise,+mosaic_noise");
+    CHECK(cv::norm(render(""), render("-mosaic_noise"), cv::NORM_INF) == 0);  // off by default
+    // The noise of channel ch at red sites (even row, even column) and its correlation with the right
+    // neighbour's, away from clipping.
+    const auto measure = [&](const cv::Mat& noisy, int ch) {
+        double s2 = 0, sxy = 0, t2 = 0;
+        int n = 0;
+        for (int v = 0; v + 1 < clean.rows; v += 2)
+            for (int u = 0; u + 1 < clean.cols; u += 2) {
+                const double c0 = clean.at<cv::Vec3b>(v, u)[ch], c1 = clean.at<cv::Vec3b>(v, u + 1)[ch];
+                if (c0 < 30 || c0 > 225 || c1 < 30 || c1 > 225) continue;
+                const double a = noisy.at<cv::Vec3b>(v, u)[ch] - c0, b = noisy.at<cv::Vec3b>(v, u + 1)[ch] - c1;
+                s2 += a * a;
+                t2 += b * b;
+                sxy += a * b;
+                ++n;
+            }
+        REQUIRE(n > 10000);
+        return std::make_pair(std::sqrt(s2 / n), sxy / std::sqrt(s2 * t2));
+    };
+    const SensorModel k1 = kinect1();
+    // Per pixel: σ as set (rounding adds 1/12 of a level²), neighbours independent.
+    const auto [sigma_pixel, corr_pixel] = measure(per_pixel, 1);
+    CHECK(sigma_pixel == Approx(std::sqrt(k1.color_noise_dn * k1.color_noise_dn + 1.0 / 12)).epsilon(0.1));
+    CHECK(std::abs(corr_pixel) < 0.05);
+    // On the mosaic: red at a red site is the site's own value, σ; green there is the mean of four
+    // sites, σ/2, one of them the right neighbour's own green (σ): correlation (σ²/4) / (σ/2 · σ) = 1/2.
+    const auto [sigma_red, corr_red] = measure(mosaic, 2);
+    CHECK(sigma_red == Approx(k1.mosaic_noise_dn).epsilon(0.1));
+    const auto [sigma_green, corr_green] = measure(mosaic, 1);
+    CHECK(sigma_green == Approx(std::sqrt(k1.mosaic_noise_dn * k1.mosaic_noise_dn / 4 + 1.0 / 12)).epsilon(0.1));
+    CHECK(corr_green == Approx(0.5).margin(0.08));
+    // The right neighbour's red is the mean of this site's and the next one's (σ/√2): correlation 1/√2.
+    CHECK(corr_red == Approx(std::sqrt(0.5)).margin(0.08));
+    CHECK(parse_effects("").mosaic_noise == false);
+    CHECK(kinect2().mosaic_noise_dn == 0);  // not measured: its noise stays per pixel
+}

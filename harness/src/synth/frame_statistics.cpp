@@ -181,6 +181,40 @@ void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc
     plane_fit_noise(depth_m, 32, "depth_noise_32px_mm.", "depth noise (plane fit RMS, 32×32 patches)", acc);
 }
 
+// The noise where the image is flat (smoothed gradient under 4 grey levels, grey 15–240): the mean square of
+// the image minus its Gaussian blur (σ 3 px), and that residual's correlation with its right and lower
+// neighbour's — 0 for noise independent from pixel to pixel; demosaicing and in-camera filtering
+// correlate a real camera's noise, which Immerkær's estimate (finest scale only) cannot tell.
+void measure_flat_noise(const cv::Mat& grey, Accumulator& acc) {
+    cv::Mat smooth, residual, slight, gx, gy, magnitude;
+    cv::GaussianBlur(grey, smooth, cv::Size(0, 0), 3.0);
+    residual = grey - smooth;
+    cv::GaussianBlur(grey, slight, cv::Size(0, 0), 1.5);
+    cv::Sobel(slight, gx, CV_32F, 1, 0);
+    cv::Sobel(slight, gy, CV_32F, 0, 1);
+    cv::magnitude(gx, gy, magnitude);
+    double rr = 0, right = 0, below = 0;
+    std::size_t n = 0;
+    for (int y = 8; y + 9 < grey.rows; ++y) {
+        const float* g = grey.ptr<float>(y);
+        const float* m = magnitude.ptr<float>(y);
+        const float* m_below = magnitude.ptr<float>(y + 1);
+        const float* r = residual.ptr<float>(y);
+        const float* r_below = residual.ptr<float>(y + 1);
+        for (int x = 8; x + 9 < grey.cols; ++x) {
+            if (m[x] > 4 || m[x + 1] > 4 || m_below[x] > 4 || g[x] < 15 || g[x] > 240) continue;
+            rr += static_cast<double>(r[x]) * r[x];
+            right += static_cast<double>(r[x]) * r[x + 1];
+            below += static_cast<double>(r[x]) * r_below[x];
+            ++n;
+        }
+    }
+    if (n == 0) return;
+    acc.ratio("image.flat_noise_ms", "noise on flat pixels, mean square about a 3-px blur, grey levels²", rr, static_cast<double>(n));
+    acc.ratio("image.flat_noise_corr_right", "noise on flat pixels, correlation with the right neighbour", right, rr);
+    acc.ratio("image.flat_noise_corr_below", "noise on flat pixels, correlation with the neighbour below", below, rr);
+}
+
 void measure_image(const cv::Mat& bgr, Accumulator& acc) {
     cv::Mat grey8, grey;
     cv::cvtColor(bgr, grey8, cv::COLOR_BGR2GRAY);
@@ -209,6 +243,7 @@ void measure_image(const cv::Mat& bgr, Accumulator& acc) {
     // The same per unit of texture: how sharp the edges are, whatever their number.
     const double g = cv::mean(magnitude)[0];
     if (g > 0) acc.mean("image.edge_sharpness", "edge sharpness (Laplacian variance / mean gradient²)", stddev[0] * stddev[0] / (g * g));
+    measure_flat_noise(grey, acc);
     acc.mean("image.mean_grey", "mean grey level", cv::mean(grey8)[0]);
     acc.ratio("image.saturated", "share of saturated pixels (≥ 250)", cv::countNonZero(grey8 >= 250), grey.total());
 }

@@ -246,6 +246,35 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     out.color.create(H, W, CV_8UC3);
     const HashStream color_noise(seed_, kColorNoise, frame);
     const bool stretch = contrast != 1.0;
+    // +mosaic_noise: the sensor's noise lands on its RGGB Bayer mosaic (one value a pixel) and the
+    // demosaicing interpolates it bilinearly into the two missing channels, as it does the signal, so
+    // the noise is correlated across neighbouring pixels and channels (Hirakawa & Parks 2006).
+    cv::Mat mosaic;
+    const bool on_mosaic = noise_dn > 0 && fx.mosaic_noise && sensor_.mosaic_noise_dn > 0;
+    if (on_mosaic) {
+        mosaic.create(H, W, CV_32F);
+        tbb::parallel_for(0, H, [&](int v) {
+            float* m = mosaic.ptr<float>(v);
+            for (int u = 0; u < W; ++u)
+                m[u] = static_cast<float>(sensor_.mosaic_noise_dn *
+                                          gaussian_fast(color_noise(static_cast<uint64_t>(v) * W + static_cast<uint64_t>(u))));
+        });
+    }
+    auto mosaic_at = [&](int u, int v) { return mosaic.at<float>(std::clamp(v, 0, H - 1), std::clamp(u, 0, W - 1)); };
+    // The noise of BGR channel ch at (u, v): the site's own value where the mosaic holds that colour,
+    // else the mean of the nearest sites that do (2 or 4 of them).
+    auto demosaiced_noise = [&](int u, int v, int ch) -> double {
+        const bool even_row = v % 2 == 0, even_col = u % 2 == 0;
+        const int site = even_row ? (even_col ? 2 : 1) : (even_col ? 1 : 0);  // R G / G B, as BGR indices
+        if (site == ch) return mosaic_at(u, v);
+        if (ch == 1)  // green at a red or blue site: its four edge neighbours
+            return 0.25 * (mosaic_at(u - 1, v) + mosaic_at(u + 1, v) + mosaic_at(u, v - 1) + mosaic_at(u, v + 1));
+        if (site != 1)  // red at blue or blue at red: the four diagonal neighbours
+            return 0.25 * (mosaic_at(u - 1, v - 1) + mosaic_at(u + 1, v - 1) + mosaic_at(u - 1, v + 1) + mosaic_at(u + 1, v + 1));
+        // red or blue at a green site: the two neighbours along the row that holds that colour
+        const bool along_row = (ch == 2) == even_row;
+        return along_row ? 0.5 * (mosaic_at(u - 1, v) + mosaic_at(u + 1, v)) : 0.5 * (mosaic_at(u, v - 1) + mosaic_at(u, v + 1));
+    };
     std::vector<double> du2(static_cast<std::size_t>(W));  // (u − cx)², per column
     for (int u = 0; u < W; ++u) du2[static_cast<std::size_t>(u)] = (u - sensor_.color.cx) * (u - sensor_.color.cx);
     tbb::parallel_for(0, H, [&](int v) {
@@ -258,8 +287,9 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
                 static_cast<float>(1.0 - vignetting * std::min(1.0, (du2[static_cast<std::size_t>(u)] + dv2) / half_diagonal2));
             const cv::Vec3f c = in[u] * fall_off;
             for (int ch = 0; ch < 3; ++ch) {
-                const double noise =
-                    noise_dn > 0 ? noise_dn * gaussian_fast(color_noise(row_index + static_cast<uint64_t>(u) * 3 + ch)) : 0.0;
+                const double noise = on_mosaic      ? demosaiced_noise(u, v, ch)
+                                     : noise_dn > 0 ? noise_dn * gaussian_fast(color_noise(row_index + static_cast<uint64_t>(u) * 3 + ch))
+                                                    : 0.0;
                 // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
                 // measured on the real images, tone curve and all).
                 const double y = srgb(c[ch]);

@@ -24,13 +24,15 @@ enum class DepthPrinciple { StructuredLight, TimeOfFlight };
 
 // Every effect of the sensor models, each one switchable (`vobench synth --effects`), so that what each
 // costs an algorithm can be measured. All on by default except stamp_offsets, which only applies to
-// built-in trajectories (with --stamps the real stamps are used whatever it says), and tone_curve,
-// which matches the real frames' contrast but makes feature tracking easier than on them.
+// built-in trajectories (with --stamps the real stamps are used whatever it says), tone_curve,
+// which matches the real frames' contrast but makes feature tracking easier than on them, and
+// mosaic_noise, which matches one noise statistic and overshoots another (docs/synthetic-sensors.md).
 struct Effects {
     // Colour camera.
     bool motion_blur = true;      // integration over the exposure time
     bool optics_blur = true;      // lens and demosaicing point spread (Gaussian)
     bool image_noise = true;      // shot and read noise
+    bool mosaic_noise = false;    // the noise added on the Bayer mosaic and interpolated with it (off: see docs/synthetic-sensors.md)
     bool vignetting = true;       // radial fall-off of the lens
     bool auto_exposure = true;    // a gain that follows the scene's brightness with a lag
     bool tone_curve = false;      // the camera's contrast boost in display space (off: see docs/synthetic-sensors.md)
@@ -116,6 +118,7 @@ struct SensorModel {
     // Colour camera exposure and noise.
     double exposure_s = 0.015;
     double color_noise_dn = 2.0;            // σ of additive noise, 8-bit digital numbers
+    double mosaic_noise_dn = 0;             // mosaic_noise: σ at each site of the RGGB mosaic (0: not measured, noise per pixel)
     double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
     double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)
