@@ -242,6 +242,7 @@ def put_vo_params(args, w):
               "profile_parallax": ({"profile": "parallax"}, None),
               "profile_unknown": ({"profile": "fast"}, r"parameter 'profile': 'fast' is not one of default\|paper\|refresh\|parallax"),
               "detector_fast_harris": ({"detector": "fast_harris"}, None),
+              "detector_fast_harris_deep_pyramid": ({"detector": "fast_harris", "lk_levels": "8", "lk_window": "61"}, None),
               "detector_unknown": ({"detector": "sift"}, r"parameter 'detector': 'sift' is not one of orb\|fast_harris"),
               "parallax_negative": ({"keyframe_parallax": "-10"}, r"parameter 'keyframe_parallax': '-10' is outside"),
               "parallax_nan": ({"keyframe_parallax": "nan"}, r"parameter 'keyframe_parallax': 'nan' is not a finite number"),

@@ -53,6 +53,25 @@ TEST_CASE("put_vo on fr1/rpy: the default no worse than OpenCV RgbdOdometry's RP
     }
 }
 
+// detector=fast_harris keeps corners (LK window's reach on the coarsest level) from the image's
+// edge; with a deep pyramid and a wide window that reach is larger than the image, so it is capped at
+// a quarter of the image's shorter side — without the cap no corner is found and every frame is lost.
+TEST_CASE("put_vo with fast_harris corners and a deep pyramid still tracks (the edge border is capped)", "[put_vo]") {
+    VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
+    TrackOptions o;
+    o.dataset = "tum";
+    o.path = dir.string();
+    o.dataset_options = {{"intrinsics", "fr1"}};
+    o.params = {{"detector", "fast_harris"}, {"lk_levels", "8"}, {"lk_window", "61"}};
+    o.algorithm = "put_vo";
+    o.seed = 1;
+    o.max_frames = 12;
+    const TrackResult r = run_track(o, PluginRegistry({VOBENCH_PLUGIN_DIR}));
+    REQUIRE(r.error.empty());
+    CHECK(r.frames.size() == 12);
+    CHECK(r.failed_frames == 0);
+}
+
 // profile=paper turns off what the plugin adds to §5.1 (flow prior, forward-backward check, depth
 // weighting, noise-model refinement, depth interpolation). Measured on the sample
 // (configs/real_sample.yaml, seeds 1-5): it loses one frame per seed and its RPE per second is 0.083 m

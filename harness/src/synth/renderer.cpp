@@ -248,7 +248,7 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
     const bool stretch = contrast != 1.0;
     // +mosaic_noise: the sensor's noise lands on its RGGB Bayer mosaic (one value a pixel) and the
     // demosaicing interpolates it bilinearly into the two missing channels, as it does the signal, so
-    // the noise is correlated across neighbouring pixels and channels (Hirakawa & Parks 2006).
+    // the noise is correlated across neighbouring pixels and channels.
     cv::Mat mosaic;
     const bool on_mosaic = noise_dn > 0 && fx.mosaic_noise && sensor_.mosaic_noise_dn > 0;
     if (on_mosaic) {

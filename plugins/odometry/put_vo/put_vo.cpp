@@ -119,8 +119,10 @@ public:
         const std::string profile = p.get_string("profile");
         const bool fast_harris = profile == "parallax" || p.get_string("detector") == "fast_harris";
         g.kind = fast_harris && profile != "paper" ? put_vo::CornerKind::fast_harris : put_vo::CornerKind::orb;
-        // No corner so near the edge that its LK window leaves the image on the coarsest level.
-        g.border_px = (static_cast<int>(p.get_int("lk_window")) / 2 + 1) << static_cast<int>(p.get_int("lk_levels"));
+        // No corner so near the edge that its LK window leaves the image on the coarsest level (a deep
+        // pyramid still leaves the middle half of the image to search).
+        g.border_px = std::min((static_cast<int>(p.get_int("lk_window")) / 2 + 1) << static_cast<int>(p.get_int("lk_levels")),
+                               static_cast<int>(std::min(camera.width, camera.height)) / 4);
         detector_ = std::make_unique<put_vo::GridDetector>(g);
         // ε is given for 640 px images; features spread with resolution (Kinect v2: ×3).
         eps_ = p.get_double("dbscan_eps") * camera.width / 640.0;
