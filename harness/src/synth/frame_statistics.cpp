@@ -183,7 +183,8 @@ void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc
 
 // The noise where the image is flat (smoothed gradient under 4 grey levels, grey 15–240): the mean square of
 // the image minus its Gaussian blur (σ 3 px), and that residual's correlation with its right and lower
-// neighbour's — 0 for noise independent from pixel to pixel; demosaicing and in-camera filtering
+// neighbour's — near 0 for noise independent from pixel to pixel (0.05 on a noisy ramp; smooth shading
+// left in the residual adds to it); demosaicing and in-camera filtering
 // correlate a real camera's noise, which Immerkær's estimate (finest scale only) cannot tell.
 void measure_flat_noise(const cv::Mat& grey, Accumulator& acc) {
     cv::Mat smooth, residual, slight, gx, gy, magnitude;
@@ -361,11 +362,12 @@ void measure_shadow_steps(const cv::Mat& depth_m, double fx, Accumulator& acc) {
     }
 }
 
-// The colour camera's brightness change into each measured frame from the one before it in rgb.txt
+// Each measured frame against the one before it in rgb.txt: the tracker's precision
+// (track_precision.hpp) and the colour camera's brightness change
 // (photometric_gain.hpp): the median and the 90th percentile of its absolute log ratio over the
 // frames, in per cent; and, when the measured frames are consecutive, the auto-exposure time constant
 // that best explains them.
-class GainChanges {
+class FrameToFrame {
 public:
     void add(const std::filesystem::path& folder, const std::vector<tum::ListEntry>& rgb, std::size_t index, const cv::Mat& grey,
              const cv::Mat& depth_m) {
@@ -463,7 +465,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     for (std::size_t k = 0; k < n; ++k) chosen.push_back(n == pairs.size() ? k : k * pairs.size() / n);
     Accumulator acc;
     ShiftScores shifts{};
-    GainChanges gains;
+    FrameToFrame frame_to_frame;
     std::optional<DepthRays> rays;
     if (camera) rays.emplace(*camera);
     for (std::size_t k : chosen) {
@@ -478,7 +480,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         measure_depth(depth_m, grey, acc);
         score_edge_shifts(depth_m, grey, shifts);
         measure_image(bgr, acc);
-        gains.add(folder, rgb, m.first, grey, depth_m);
+        frame_to_frame.add(folder, rgb, m.first, grey, depth_m);
         if (rays) {
             require_camera_size(depth_path, depth_m, *camera);
             const IcpConditioning c = icp_conditioning(depth_m, *rays);
@@ -490,7 +492,7 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         acc.mean("stamps.offset_mean_ms", "colour–depth stamp offset, mean |Δt|, ms", offset_ms);
         acc.maximum("stamps.offset_max_ms", "colour–depth stamp offset, largest |Δt|, ms", offset_ms);
     }
-    gains.report(acc);
+    frame_to_frame.report(acc);
     // The depth image's content sits (dx, dy) px from the colour image's: colour edge at depth edge − shift.
     int best_x = 0, best_y = 0;
     for (int dy = -kMaxShift; dy <= kMaxShift; ++dy)

@@ -45,9 +45,9 @@ PointBuckets::PointBuckets(const std::vector<cv::Point2f>& points, double cell) 
         if (cell_of[i] != none) order_[next[cell_of[i]]++] = i;
 }
 
-// Cells counted from the smallest coordinate; a query point outside the points' box lands in a
-// column/row outside the grid, whose cells are empty.
-// Clamped to one past the grid either way (and -2 when not finite), so a far query cannot overflow.
+// Cells counted from the grid's origin; a query outside the points' box lands in a column or row
+// outside the grid (clamped to one past it either way, −2 when not finite, so a far query cannot
+// overflow), whose cells are empty.
 long PointBuckets::column_of(float x) const {
     return std::isfinite(x) ? static_cast<long>(std::clamp(std::floor((x - x0_) / cell_x_), -2.0, static_cast<double>(columns_ + 1))) : -2;
 }

@@ -121,8 +121,10 @@ public:
         g.kind = fast_harris && profile != "paper" ? put_vo::CornerKind::fast_harris : put_vo::CornerKind::orb;
         // No corner so near the edge that its LK window leaves the image on the coarsest level (a deep
         // pyramid still leaves the middle half of the image to search).
-        g.border_px = std::min((static_cast<int>(p.get_int("lk_window")) / 2 + 1) << static_cast<int>(p.get_int("lk_levels")),
-                               static_cast<int>(std::min(camera.width, camera.height)) / 4);
+        const int w = static_cast<int>(p.get_int("lk_window"));
+        lk_window_ = cv::Size(w, w);
+        lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
+        g.border_px = std::min((w / 2 + 1) << lk_levels_, static_cast<int>(std::min(camera.width, camera.height)) / 4);
         detector_ = std::make_unique<put_vo::GridDetector>(g);
         // ε is given for 640 px images; features spread with resolution (Kinect v2: ×3).
         eps_ = p.get_double("dbscan_eps") * camera.width / 640.0;
@@ -132,9 +134,6 @@ public:
         keyframe_parallax_px_ = p.get_double("keyframe_parallax") * camera.width / 640.0;
         refill_below_ = static_cast<int>(p.get_int("refill_below"));
         if (refill_below_ < 0) refill_below_ = redetect_below_;
-        const int w = static_cast<int>(p.get_int("lk_window"));
-        lk_window_ = cv::Size(w, w);
-        lk_levels_ = static_cast<int>(p.get_int("lk_levels"));
         lk_fb_threshold_ = p.get_double("lk_fb_threshold");
         own_lk_ = p.get_string("lk_implementation") == "own";
         flow_prior_ = p.get_bool("lk_flow_prior");
