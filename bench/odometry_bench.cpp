@@ -220,12 +220,14 @@ void run_decode_real(benchmark::State& state, bool own) {
 // The Lucas–Kanade tracker alone, put_vo's settings (7-px window, three levels, 30 iterations or
 // 0.01 px), one core: the real fr1/rpy frames' 400 strongest Shi–Tomasi corners tracked into the next
 // frame, pyramids and corners prepared outside the timing. `own`: lk_tracker.hpp (OpenCV's result to
-// the bit); otherwise cv::calcOpticalFlowPyrLK.
-void run_lucas_kanade(benchmark::State& state, bool own) {
+// the bit); `integer`: lk_tracker.hpp with integer_sums; otherwise cv::calcOpticalFlowPyrLK.
+void run_lucas_kanade(benchmark::State& state, const std::string& implementation) {
     const std::vector<fs::path> color = real_fr1_rpy_images(state, "rgb");
     if (color.size() < 2) return;
     cv::setNumThreads(1);
     put_vo::LkOptions o;
+    o.integer_sums = implementation == "integer";
+    const bool own = implementation != "opencv";
     const int border = put_vo::lk_pyramid_border(o.window);
     std::vector<std::vector<cv::Mat>> pyramids(color.size());
     std::vector<std::vector<cv::Point2f>> corners(color.size());
@@ -299,8 +301,11 @@ BENCHMARK_CAPTURE(run_decode_part, opencv_imread / kinect2_depth, "depth")->Unit
 BENCHMARK_CAPTURE(run_decode_part, readers_png / kinect2_depth, "depth own")->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, opencv_imread / tum_fr1_640x480_both, false)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK_CAPTURE(run_decode_real, readers_png / tum_fr1_640x480_both, true)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_lucas_kanade, put_vo_lk_tracker / tum_fr1_rpy_400_corners, true)->Unit(benchmark::kMillisecond)->UseRealTime();
-BENCHMARK_CAPTURE(run_lucas_kanade, opencv_calcOpticalFlowPyrLK / tum_fr1_rpy_400_corners, false)
+BENCHMARK_CAPTURE(run_lucas_kanade, put_vo_lk_tracker / tum_fr1_rpy_400_corners, "own")->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(run_lucas_kanade, put_vo_lk_tracker_integer_sums / tum_fr1_rpy_400_corners, "integer")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+BENCHMARK_CAPTURE(run_lucas_kanade, opencv_calcOpticalFlowPyrLK / tum_fr1_rpy_400_corners, "opencv")
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 BENCHMARK(run_registration)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();

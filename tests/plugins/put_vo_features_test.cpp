@@ -6,6 +6,7 @@
 
 #include <catch2/catch.hpp>
 #include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
 
 #include <limits>
 #include <random>
@@ -72,15 +73,14 @@ TEST_CASE("PointBuckets: the points within r, as a brute-force search finds them
     CHECK(visits == 0);
 }
 
-TEST_CASE("harris_response: proportional to cv::cornerHarris (block 7, Sobel 3, k 0.04) inside the image", "[put_vo][features]") {
+TEST_CASE("harris_response: proportional to cv::cornerHarris (block 7, Scharr, k 0.04) inside the image", "[put_vo][features]") {
     const cv::Mat img = textured(160, 120, 3);
-    cv::Mat dense, gx, gy;
-    cv::cornerHarris(img, dense, 7, 3, 0.04);
-    cv::Sobel(img, gx, CV_16S, 1, 0, 3);
-    cv::Sobel(img, gy, CV_16S, 0, 1, 3);
-    // cornerHarris scales the Sobel gradients by s = 1 / (4 · 7 · 255), so its response is s⁴ times
-    // the unnormalised one.
-    const double s = 1.0 / (4.0 * 7.0 * 255.0), s4 = s * s * s * s;
+    cv::Mat dense;
+    cv::cornerHarris(img, dense, 7, -1, 0.04);  // aperture -1: Scharr's 3×3 derivatives
+    const cv::Mat derivatives = put_vo::scharr_derivatives(img);
+    // cornerHarris scales Scharr's gradients by s = 1 / (2 · 4 · 7 · 255), so its response is s⁴
+    // times the unnormalised one.
+    const double s = 1.0 / (2.0 * 4.0 * 7.0 * 255.0), s4 = s * s * s * s;
     double largest = 0;
     for (int y = 4; y < img.rows - 4; ++y)
         for (int x = 4; x < img.cols - 4; ++x) largest = std::max(largest, std::abs(static_cast<double>(dense.at<float>(y, x))));
@@ -89,10 +89,22 @@ TEST_CASE("harris_response: proportional to cv::cornerHarris (block 7, Sobel 3, 
     for (int y = 4; y < img.rows - 4; y += 3)
         for (int x = 4; x < img.cols - 4; x += 3) {
             // cornerHarris works in float: 0.1 % of the value, or 1e-5 of the image's largest response.
-            REQUIRE(put_vo::harris_response(gx, gy, x, y) * s4 == Approx(dense.at<float>(y, x)).epsilon(1e-3).margin(1e-5 * largest));
+            REQUIRE(put_vo::harris_response(derivatives, x, y) * s4 == Approx(dense.at<float>(y, x)).epsilon(1e-3).margin(1e-5 * largest));
             ++compared;
         }
     CHECK(compared > 1000);
+}
+
+TEST_CASE("scharr_derivatives: the LK pyramid's own base-level derivatives", "[put_vo][features]") {
+    const cv::Mat img = textured(160, 120, 5);
+    std::vector<cv::Mat> pyramid;
+    cv::buildOpticalFlowPyramid(img, pyramid, cv::Size(9, 9), 2);
+    const cv::Mat mine = put_vo::scharr_derivatives(img);
+    REQUIRE(mine.type() == pyramid[1].type());
+    REQUIRE(mine.size() == pyramid[1].size());
+    // Inside the image (the pyramid's border rule differs from cv::Scharr's at the edge) they agree exactly.
+    const cv::Rect inner(1, 1, img.cols - 2, img.rows - 2);
+    CHECK(cv::norm(mine(inner), pyramid[1](inner), cv::NORM_INF) == 0);
 }
 
 TEST_CASE("GridDetector fast_harris: corners in their own cells, off the border, the strongest kept, deterministic", "[put_vo][features]") {
@@ -103,9 +115,7 @@ TEST_CASE("GridDetector fast_harris: corners in their own cells, off the border,
     o.border_px = 16;
     put_vo::GridDetector detector(o), again(o);
     const std::vector<cv::KeyPoint> kps = detector.detect(img);
-    cv::Mat gx, gy;
-    cv::Sobel(img, gx, CV_16S, 1, 0, 3);
-    cv::Sobel(img, gy, CV_16S, 0, 1, 3);
+    const cv::Mat derivatives = put_vo::scharr_derivatives(img);
     REQUIRE(kps.size() > 16 * 20u);
     std::vector<int> per_cell(16, 0);
     for (const cv::KeyPoint& k : kps) {
@@ -116,12 +126,15 @@ TEST_CASE("GridDetector fast_harris: corners in their own cells, off the border,
         const int cell = static_cast<int>(k.pt.y) / 120 * 4 + static_cast<int>(k.pt.x) / 160;
         REQUIRE(k.class_id == cell);  // cells do not overlap: each corner is found once
         ++per_cell[static_cast<std::size_t>(cell)];
-        REQUIRE(k.response == Approx(put_vo::harris_response(gx, gy, static_cast<int>(k.pt.x), static_cast<int>(k.pt.y))));
+        REQUIRE(k.response == Approx(put_vo::harris_response(derivatives, static_cast<int>(k.pt.x), static_cast<int>(k.pt.y))));
     }
     for (int n : per_cell) CHECK(n <= 2 * o.per_cell_target);
-    const std::vector<cv::KeyPoint> repeat = again.detect(img);
+    // Given the derivatives (as put_vo gives its pyramid's), the same corners as computing them.
+    const std::vector<cv::KeyPoint> repeat = again.detect(img, derivatives);
     REQUIRE(repeat.size() == kps.size());
     for (std::size_t i = 0; i < kps.size(); ++i) REQUIRE(repeat[i].pt == kps[i].pt);
+    CHECK_THROWS_AS(again.detect(img, cv::Mat(480, 640, CV_16SC1, cv::Scalar(0))), std::invalid_argument);
+    CHECK_THROWS_AS(again.detect(img, derivatives(cv::Rect(0, 0, 320, 240))), std::invalid_argument);
     // With minPts 2 any two corners within ε share a cluster, so the strongest of each cluster and the
     // isolated ones that DBSCAN keeps lie more than ε apart, and fewer remain.
     const std::vector<cv::KeyPoint> clustered = put_vo::dbscan_strongest(kps, 5, 2);

@@ -5,25 +5,30 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <stdexcept>
 
 namespace put_vo {
 
 GridDetector::GridDetector(const GridDetectorOptions& o) : options_(o) {
     const int cells = o.grid * o.grid;
     thresholds_.assign(static_cast<std::size_t>(cells), o.threshold_init);
-    options_.border_px = std::max(options_.border_px, 4);  // the Harris window and its Sobel taps stay inside
+    options_.border_px = std::max(options_.border_px, 4);  // the Harris window and its Scharr taps stay inside
     if (o.kind == CornerKind::orb)
         for (int i = 0; i < cells; ++i)
             // One pyramid level: tracking, not matching, follows; FAST with Harris ranking as ORB does.
             orbs_.push_back(cv::ORB::create(2 * o.per_cell_target, 1.2f, 1, 31, 0, 2, cv::ORB::HARRIS_SCORE, 31, o.threshold_init));
 }
 
-std::vector<cv::KeyPoint> GridDetector::detect(const cv::Mat& gray) {
+std::vector<cv::KeyPoint> GridDetector::detect(const cv::Mat& gray, const cv::Mat& derivatives) {
     std::vector<cv::KeyPoint> all;
     if (options_.kind == CornerKind::fast_harris) {
         // Once for the image: each candidate's Harris window then sums precomputed gradients.
-        cv::Sobel(gray, gx_, CV_16S, 1, 0, 3);
-        cv::Sobel(gray, gy_, CV_16S, 0, 1, 3);
+        if (derivatives.empty())
+            derivatives_ = scharr_derivatives(gray);
+        else if (derivatives.type() != CV_16SC2 || derivatives.size() != gray.size())
+            throw std::invalid_argument("GridDetector: the derivatives must be CV_16SC2 and of the image's size");
+        else
+            derivatives_ = derivatives;
     }
     const int g = options_.grid;
     for (int row = 0; row < g; ++row) {
@@ -79,7 +84,7 @@ std::vector<cv::KeyPoint> GridDetector::detect_cell_fast_harris(const cv::Mat& g
     adapt_threshold(cell, std::min(kps.size(), static_cast<std::size_t>(n)));
     cv::KeyPointsFilter::retainBest(kps, 2 * n);
     for (cv::KeyPoint& k : kps)
-        k.response = static_cast<float>(harris_response(gx_, gy_, static_cast<int>(k.pt.x), static_cast<int>(k.pt.y)));
+        k.response = static_cast<float>(harris_response(derivatives_, static_cast<int>(k.pt.x), static_cast<int>(k.pt.y)));
     cv::KeyPointsFilter::retainBest(kps, n);
     return kps;
 }
@@ -93,17 +98,17 @@ void GridDetector::adapt_threshold(int cell, std::size_t found) {
         t = std::min(options_.threshold_max, t + 3);
 }
 
-double harris_response(const cv::Mat& gx, const cv::Mat& gy, int x, int y, int block) {
+double harris_response(const cv::Mat& derivatives, int x, int y, int block) {
     const int r = block / 2;
     std::int64_t sxx = 0, syy = 0, sxy = 0;
     for (int v = y - r; v <= y + r; ++v) {
-        const short* dx = gx.ptr<short>(v) + x - r;
-        const short* dy = gy.ptr<short>(v) + x - r;
-        int row_xx = 0, row_yy = 0, row_xy = 0;  // a row's sums fit: 7 · 1020² < 2³¹
+        const short* d = derivatives.ptr<short>(v) + 2 * (x - r);
+        std::int64_t row_xx = 0, row_yy = 0, row_xy = 0;  // |Scharr| ≤ 16·255: each product fits 32 bits
         for (int u = 0; u < block; ++u) {
-            row_xx += dx[u] * dx[u];
-            row_yy += dy[u] * dy[u];
-            row_xy += dx[u] * dy[u];
+            const int dx = d[2 * u], dy = d[2 * u + 1];
+            row_xx += dx * dx;
+            row_yy += dy * dy;
+            row_xy += dx * dy;
         }
         sxx += row_xx;
         syy += row_yy;
@@ -111,6 +116,14 @@ double harris_response(const cv::Mat& gx, const cv::Mat& gy, int x, int y, int b
     }
     const double a = static_cast<double>(sxx), b = static_cast<double>(syy), c = static_cast<double>(sxy);
     return a * b - c * c - 0.04 * (a + b) * (a + b);
+}
+
+cv::Mat scharr_derivatives(const cv::Mat& gray) {
+    cv::Mat dx, dy, both;
+    cv::Scharr(gray, dx, CV_16S, 1, 0);
+    cv::Scharr(gray, dy, CV_16S, 0, 1);
+    cv::merge(std::vector<cv::Mat>{dx, dy}, both);
+    return both;
 }
 
 }  // namespace put_vo

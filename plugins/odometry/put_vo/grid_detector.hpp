@@ -28,8 +28,10 @@ struct GridDetectorOptions {
 class GridDetector {
 public:
     explicit GridDetector(const GridDetectorOptions& options = {});
-    // Key points of the whole image, in full-image coordinates.
-    std::vector<cv::KeyPoint> detect(const cv::Mat& gray);
+    // Key points of the whole image, in full-image coordinates. fast_harris ranks by the Harris
+    // response of `derivatives` (the image's Scharr derivatives, CV_16SC2, as
+    // cv::buildOpticalFlowPyramid gives them for its base level; empty: computed here).
+    std::vector<cv::KeyPoint> detect(const cv::Mat& gray, const cv::Mat& derivatives = {});
 
 private:
     std::vector<cv::KeyPoint> detect_cell_orb(const cv::Mat& gray, int cell, cv::Rect window);
@@ -39,13 +41,17 @@ private:
     GridDetectorOptions options_;
     std::vector<int> thresholds_;  // per cell, carried between calls
     std::vector<cv::Ptr<cv::ORB>> orbs_;
-    cv::Mat gx_, gy_;  // fast_harris: the current image's Sobel derivatives
+    cv::Mat derivatives_;  // fast_harris, when not given: the current image's Scharr derivatives
 };
 
 // The Harris & Stephens (1988) corner response det(M) − k·trace(M)² at pixel (x, y), M the sum over
-// a block×block window of the gradients' outer products, k = 0.04 (ORB's HARRIS_K); gx, gy are the
-// image's 3×3 Sobel derivatives (CV_16S), as ORB and cv::cornerHarris take them. Only its order
-// matters here, so it is left unnormalised. (x, y) must lie block/2 px inside gx and gy.
-double harris_response(const cv::Mat& gx, const cv::Mat& gy, int x, int y, int block = 7);
+// a block×block window of the gradients' outer products, k = 0.04 (ORB's HARRIS_K); `derivatives`
+// holds the image's 3×3 Scharr derivatives (CV_16SC2: x, y), which the LK pyramid already has, in
+// place of the Sobel derivatives ORB takes (Scharr's are the more rotation-invariant, and free
+// here). Only its order matters, so it is left unnormalised. (x, y) must lie block/2 px inside.
+double harris_response(const cv::Mat& derivatives, int x, int y, int block = 7);
+
+// The 3×3 Scharr derivatives of an 8-bit image, CV_16SC2 (x, y), as cv::buildOpticalFlowPyramid's.
+cv::Mat scharr_derivatives(const cv::Mat& gray);
 
 }  // namespace put_vo

@@ -97,6 +97,12 @@ cv::Point2f track_point(const std::vector<cv::Mat>& previous, const std::vector<
     const double epsilon2 = epsilon * epsilon;
     const float min_eigen_threshold = static_cast<float>(o.min_eigen);
     alignas(16) float p1[kLanes], p2[kLanes], p3[kLanes];
+    // Integer sums: |value − value| ≤ 255·32 and |Scharr derivative| ≤ 16·255, so a window of at most
+    // 64 products stays under 2^31 (64 · 8160 · 4080 ≈ 2.13e9).
+    const bool integer = o.integer_sums && win.width * win.height <= 64;
+    alignas(16) short lane_mask[kLanes];
+    for (int k = 0; k < kLanes; ++k) lane_mask[k] = static_cast<short>(k < win.width ? -1 : 0);
+    const cv::v_int16x8 in_window = cv::v_load(lane_mask);
     cv::Point2f result;  // this level's position; the next finer level starts at twice it
     for (int level = levels; level >= 0; --level) {
         const cv::Mat& I = previous[2 * level];
@@ -113,6 +119,7 @@ cv::Point2f track_point(const std::vector<cv::Mat>& previous, const std::vector<
         // The template and its structure tensor A = Σ [Ix² IxIy; IxIy Iy²].
         const Weights wi = bilinear(corner.x - static_cast<float>(icorner.x), corner.y - static_cast<float>(icorner.y));
         float a11 = 0, a12 = 0, a22 = 0;
+        cv::v_int32x4 s11 = cv::v_setzero_s32(), s12 = s11, s22 = s11;
         for (int y = 0; y < win.height; ++y) {
             const uchar* src = I.data + static_cast<std::ptrdiff_t>(icorner.y + y) * static_cast<std::ptrdiff_t>(I.step) + icorner.x;
             const short* dsrc = reinterpret_cast<const short*>(dI.data + static_cast<std::ptrdiff_t>(icorner.y + y) *
@@ -122,6 +129,14 @@ cv::Point2f track_point(const std::vector<cv::Mat>& previous, const std::vector<
             cv::v_int16x8& dx = t.dx[static_cast<std::size_t>(y)];
             cv::v_int16x8& dy = t.dy[static_cast<std::size_t>(y)];
             derivatives(dsrc, dI.step1(), wi, dx, dy);
+            if (integer) {  // lanes past the window zeroed, so that they add nothing here or below
+                dx = dx & in_window;
+                dy = dy & in_window;
+                s11 += cv::v_dotprod(dx, dx);
+                s12 += cv::v_dotprod(dx, dy);
+                s22 += cv::v_dotprod(dy, dy);
+                continue;
+            }
             products(dx, dx, p1);
             products(dx, dy, p2);
             products(dy, dy, p3);
@@ -130,6 +145,11 @@ cv::Point2f track_point(const std::vector<cv::Mat>& previous, const std::vector<
                 a12 += p2[k];
                 a22 += p3[k];
             }
+        }
+        if (integer) {
+            a11 = static_cast<float>(cv::v_reduce_sum(s11));
+            a12 = static_cast<float>(cv::v_reduce_sum(s12));
+            a22 = static_cast<float>(cv::v_reduce_sum(s22));
         }
         const float A11 = a11 * kScale, A12 = a12 * kScale, A22 = a22 * kScale;
         float D = A11 * A22 - A12 * A12;
@@ -150,15 +170,25 @@ cv::Point2f track_point(const std::vector<cv::Mat>& previous, const std::vector<
             }
             const Weights wj = bilinear(p.x - static_cast<float>(ip.x), p.y - static_cast<float>(ip.y));
             float b1 = 0, b2 = 0;
+            cv::v_int32x4 s1 = cv::v_setzero_s32(), s2 = s1;
             for (int y = 0; y < win.height; ++y) {
                 const uchar* jp = J.data + static_cast<std::ptrdiff_t>(ip.y + y) * static_cast<std::ptrdiff_t>(J.step) + ip.x;
                 const cv::v_int16x8 diff = image_values(jp, J.step, wj) - t.value[static_cast<std::size_t>(y)];
+                if (integer) {
+                    s1 += cv::v_dotprod(diff, t.dx[static_cast<std::size_t>(y)]);
+                    s2 += cv::v_dotprod(diff, t.dy[static_cast<std::size_t>(y)]);
+                    continue;
+                }
                 products(diff, t.dx[static_cast<std::size_t>(y)], p1);
                 products(diff, t.dy[static_cast<std::size_t>(y)], p2);
                 for (int k = 0; k < win.width; ++k) {
                     b1 += p1[k];
                     b2 += p2[k];
                 }
+            }
+            if (integer) {
+                b1 = static_cast<float>(cv::v_reduce_sum(s1));
+                b2 = static_cast<float>(cv::v_reduce_sum(s2));
             }
             b1 *= kScale;
             b2 *= kScale;

@@ -70,9 +70,10 @@ public:
                  {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
-                 {"lk_implementation", VOBENCH_PARAM_ENUM, "own", 0, 0, "own|opencv",
+                 {"lk_implementation", VOBENCH_PARAM_ENUM, "own", 0, 0, "own|integer|opencv",
                   "own: lk_tracker.hpp, cv::calcOpticalFlowPyrLK's computation to the bit with each window row in SIMD lanes "
-                  "(1.6-1.9x faster at 7 px); opencv: cv::calcOpticalFlowPyrLK itself"},
+                  "(1.6-1.9x faster at 7 px); integer: the same with the window sums exact in integer lanes (not OpenCV's "
+                  "float rounding); opencv: cv::calcOpticalFlowPyrLK itself"},
                  {"lk_flow_prior", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "start each LK search at the feature's last image motion"},
                  {"lk_fb_threshold", VOBENCH_PARAM_DOUBLE, "1.0", 0, 100, "",
                   "forward-backward check: drop a track that does not return within this many px (0: off)"},
@@ -135,7 +136,9 @@ public:
         refill_below_ = static_cast<int>(p.get_int("refill_below"));
         if (refill_below_ < 0) refill_below_ = redetect_below_;
         lk_fb_threshold_ = p.get_double("lk_fb_threshold");
-        own_lk_ = p.get_string("lk_implementation") == "own";
+        const std::string lk = p.get_string("lk_implementation");
+        own_lk_ = lk != "opencv";
+        lk_integer_sums_ = lk == "integer";
         flow_prior_ = p.get_bool("lk_flow_prior");
         lk_criteria_ = cv::TermCriteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, static_cast<int>(p.get_int("lk_iterations")),
                                         p.get_double("lk_epsilon"));
@@ -339,6 +342,7 @@ private:
             o.max_iterations = criteria.maxCount;
             o.epsilon = criteria.epsilon;
             o.use_initial_flow = initial_flow;
+            o.integer_sums = lk_integer_sums_;
             put_vo::track_lk(previous, next, from, to, ok, o);
         } else {
             std::vector<float> err;
@@ -399,7 +403,7 @@ private:
         std::vector<cv::KeyPoint> keypoints;
         {
             Host::Stage s(host(), "detection");
-            keypoints = detector_->detect(gray_);
+            keypoints = detector_->detect(gray_, pyramid_[1]);  // the base level's Scharr derivatives
         }
         host().counter("features_detected", static_cast<double>(keypoints.size()));
         std::vector<Feature> added;
@@ -454,7 +458,7 @@ private:
     double keyframe_parallax_px_ = 0;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
-    bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true, own_lk_ = true;
+    bool estimate_every_frame_ = true, flow_prior_ = true, noise_refinement_ = true, own_lk_ = true, lk_integer_sums_ = false;
     double readout_s_ = 0;        // rolling shutter: the colour camera's readout time
     double flow_interval_s_ = 0;  // the time the features' flow was measured over (0: unknown)
     double previous_stamp_ = 0;
