@@ -52,3 +52,22 @@ TEST_CASE("parameter parsing rules shared by host and SDK", "[sdk][params]") {
     CHECK(sdk::check_param_value(b, "off").empty());
     CHECK_FALSE(sdk::check_param_value(b, "maybe").empty());
 }
+
+TEST_CASE("Params::with_defaults: a profile's defaults replace the table's, a given value still wins", "[sdk][params]") {
+    const std::vector<sdk::Param> table{{"n", VOBENCH_PARAM_INT, "350", 1, 1000, "", "h"},
+                                        {"kind", VOBENCH_PARAM_ENUM, "fast", 0, 0, "fast|orb", "h"},
+                                        {"on", VOBENCH_PARAM_BOOL, "true", 0, 0, "", "h"}};
+    const char* keys[] = {"kind"};
+    const char* values[] = {"fast"};
+    const vobench_params given{sizeof(vobench_params), 1, keys, values};
+    const sdk::Params p(table, &given);
+    CHECK(p.given("kind"));
+    CHECK_FALSE(p.given("n"));
+    const sdk::Params q = p.with_defaults({{"n", "500"}, {"kind", "orb"}});
+    CHECK(q.get_int("n") == 500);           // not given: the profile's
+    CHECK(q.get_string("kind") == "fast");  // given, even as the table's own default: kept
+    CHECK(q.get_bool("on"));                // in no profile: the table's
+    CHECK(p.get_int("n") == 350);           // the original is untouched
+    CHECK_THROWS_WITH(p.with_defaults({{"m", "1"}}), Contains("undeclared parameter 'm'"));
+    CHECK_THROWS_WITH(p.with_defaults({{"n", "5000"}}), Contains("default for 'n'"));
+}

@@ -234,20 +234,22 @@ def put_vo_params(args, w):
               "readout_negative": ({"rolling_shutter_ms": "-20"}, r"parameter 'rolling_shutter_ms': '-20' is outside"),
               "readout_text": ({"rolling_shutter_ms": "fast"}, r"parameter 'rolling_shutter_ms': 'fast' is not"),
               "readout_off": ({"rolling_shutter_ms": "0"}, None),
-              "lk_unknown": ({"lk_implementation": "cuda"}, r"parameter 'lk_implementation': 'cuda' is not one of own\|opencv"),
+              "lk_unknown": ({"lk_implementation": "cuda"}, r"parameter 'lk_implementation': 'cuda' is not one of own\|integer\|opencv"),
               "lk_opencv": ({"lk_implementation": "opencv"}, None),
+              "lk_own": ({"lk_implementation": "own"}, None),
               "lk_even_window": ({"lk_window": "4"}, None),
               "lk_wide_window": ({"lk_window": "9"}, None),
               "profile_refresh": ({"profile": "refresh"}, None),
-              "profile_parallax": ({"profile": "parallax"}, None),
-              "profile_unknown": ({"profile": "fast"}, r"parameter 'profile': 'fast' is not one of default\|paper\|refresh\|parallax"),
-              "detector_fast_harris": ({"detector": "fast_harris"}, None),
-              "detector_fast_harris_deep_pyramid": ({"detector": "fast_harris", "lk_levels": "8", "lk_window": "61"}, None),
+              "profile_keyframes": ({"profile": "keyframes"}, None),
+              "profile_paper_given_wins": ({"profile": "paper", "lk_flow_prior": "true", "detector": "fast_harris"}, None),
+              "profile_unknown": ({"profile": "parallax"}, r"parameter 'profile': 'parallax' is not one of default\|keyframes\|paper\|refresh"),
+              "detector_orb": ({"detector": "orb"}, None),
+              "detector_fast_harris_deep_pyramid": ({"lk_levels": "8", "lk_window": "61"}, None),
               "detector_unknown": ({"detector": "sift"}, r"parameter 'detector': 'sift' is not one of orb\|fast_harris"),
               "parallax_negative": ({"keyframe_parallax": "-10"}, r"parameter 'keyframe_parallax': '-10' is outside"),
               "parallax_nan": ({"keyframe_parallax": "nan"}, r"parameter 'keyframe_parallax': 'nan' is not a finite number"),
-              "refill_below_negative": ({"refill_below": "-2"}, r"parameter 'refill_below': '-2' is outside"),
-              "refill_every_keyframe": ({"refill_below": "500", "keyframe_parallax": "10"}, None)}
+              "refill_not_bool": ({"refill": "-2"}, r"parameter 'refill': '-2' is not a boolean"),
+              "refill_off": ({"refill": "false", "keyframe_parallax": "0"}, None)}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")

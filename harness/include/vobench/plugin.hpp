@@ -28,6 +28,7 @@
 #include <map>
 #include <memory>
 #include <new>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -158,7 +159,27 @@ public:
             const std::string why = check_param_value(*p, value);
             if (!why.empty()) throw Error(VOBENCH_INVALID_ARGUMENT, "parameter '" + key + "': " + why);
             values_[key] = value;
+            given_.insert(key);
         }
+    }
+
+    // Whether `name` was given rather than taken from the table's default.
+    bool given(const std::string& name) const { return given_.count(name) > 0; }
+
+    // A copy in which each parameter not given takes its value from `defaults` where that names it,
+    // instead of from the table: a plugin's profiles, sets of defaults that an explicitly given
+    // parameter still overrides. Values are checked as given ones are; a name not in the table, or a
+    // value it refuses, is the plugin's own error.
+    Params with_defaults(const std::map<std::string, std::string>& defaults) const {
+        Params out = *this;
+        for (const auto& [name, value] : defaults) {
+            const Param* p = find(name);
+            if (p == nullptr) throw Error(VOBENCH_ERROR, "plugin's defaults name undeclared parameter '" + name + "'");
+            const std::string why = check_param_value(*p, value);
+            if (!why.empty()) throw Error(VOBENCH_ERROR, "plugin's default for '" + name + "': " + why);
+            if (!given(name)) out.values_[name] = value;
+        }
+        return out;
     }
 
     const std::string& get_string(const std::string& name) const {
@@ -191,6 +212,7 @@ private:
     }
     std::vector<Param> table_;
     std::map<std::string, std::string> values_;
+    std::set<std::string> given_;
 };
 
 // ----- host services -----------------------------------------------------------------------------

@@ -1,12 +1,15 @@
 // put_vo — the PUT RGB-D visual odometry (Kraft et al. 2016, §5.1), from the paper's description:
-//   1. ORB key points in a 4×4 grid of overlapping cells, thresholds adapted per cell (grid_detector);
+//   1. corners in a 4×4 grid of cells, thresholds adapted per cell (grid_detector; the paper's ORB
+//      key points with detector=orb, FAST-Harris corners by default);
 //   2. DBSCAN over their positions, the strongest of each cluster kept (dbscan);
-//   3. pyramidal Lucas–Kanade tracking from the key frame through the following frames;
-//   4. every n frames, or earlier when tracking thins out, a new key frame; depth associated with
-//      the tracked points (undistorted pixels, moved to the middle row's time under the colour
-//      camera's rolling shutter) gives two 3-D point sets;
-//   5. RANSAC over 3-point samples + Umeyama, adaptive iterations, iterative correction (rigid_ransac);
+//   3. pyramidal Lucas–Kanade tracking from frame to frame (lk_tracker);
+//   4. every n frames, or earlier when tracking thins out or the features moved far (keyframe_parallax),
+//      a new key frame; depth associated with the tracked points (undistorted pixels, moved to the
+//      middle row's time under the colour camera's rolling shutter) gives two 3-D point sets;
+//   5. RANSAC over 3-point samples + Umeyama, adaptive iterations, iterative correction (rigid_ransac),
+//      then a refinement under the sensor's noise model (rigid_refine);
 //   6. poses chained key frame to key frame.
+// Profiles are sets of parameter defaults: paper runs §5.1 as written, keyframes put_vo 1.0's default.
 // Stages are timed through the host (detection, clustering, tracking, depth_association,
 // estimation) and counters reported per frame. Parameters and their defaults: README.md.
 #include "dbscan.hpp"
@@ -25,6 +28,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <random>
 #include <string>
@@ -38,22 +42,23 @@ class PutVo : public vobench::sdk::Odometry {
 public:
     static vobench::sdk::PluginInfo info() {
         return {"put_vo",
-                "1.0.0",
-                "PUT RGB-D VO (Kraft et al. 2016): grid ORB + DBSCAN, pyramidal LK over key frames, 3-point RANSAC + Umeyama.",
+                "2.0.0",
+                "PUT RGB-D VO (Kraft et al. 2016): grid corners + DBSCAN, pyramidal LK over key frames, 3-point RANSAC + Umeyama.",
                 "MIT",
                 "https://doi.org/10.1007/s00138-016-0802-6",
-                {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|paper|refresh|parallax",
-                  "paper: §5.1 as written, without what this plugin adds (lk_flow_prior, lk_fb_threshold, depth_weighting and "
-                  "depth_interpolation off, rolling_shutter_ms 0, refinement=umeyama, detector=orb, keyframe_parallax 0, refill_below = "
-                  "redetect_below, whatever they are set to); refresh: every "
-                  "frame a key frame with its feature pool refilled to max_features (keyframe_interval 1, redetect_below = "
-                  "max_features); parallax: a key frame every keyframe_interval frames or as soon as the features moved 10 px, "
-                  "its pool refilled to max_features, corners by fast_harris (keyframe_parallax 10, refill_below = max_features, "
-                  "detector=fast_harris). refresh and parallax: more accurate and steadier under fast motion, at about twice the time"},
-                 {"max_features", VOBENCH_PARAM_INT, "500", 20, 5000, "", "largest number of tracked features"},
-                 {"detector", VOBENCH_PARAM_ENUM, "orb", 0, 0, "orb|fast_harris",
+                {{"profile", VOBENCH_PARAM_ENUM, "default", 0, 0, "default|keyframes|paper|refresh",
+                  "a set of defaults for the parameters below; a parameter given explicitly still wins. default: key frames "
+                  "every keyframe_interval frames or as soon as the features moved keyframe_parallax px, the pool refilled at "
+                  "each, FAST-Harris corners, integer LK sums, 350 features. keyframes: put_vo 1.0's default (key frames by "
+                  "count only, refill only below redetect_below, ORB corners, OpenCV's LK to the bit, 500 features: "
+                  "keyframe_parallax 0, refill false, detector orb, lk_implementation own, max_features 500). paper: §5.1 as "
+                  "written — keyframes, and lk_flow_prior false, lk_fb_threshold 0, depth_weighting false, depth_interpolation "
+                  "false, rolling_shutter_ms 0, refinement umeyama. refresh: every frame a key frame (keyframe_interval 1)"},
+                 {"max_features", VOBENCH_PARAM_INT, "350", 20, 5000, "", "largest number of tracked features"},
+                 {"detector", VOBENCH_PARAM_ENUM, "fast_harris", 0, 0, "orb|fast_harris",
                   "orb: ORB key points in overlapping grid cells (the paper); fast_harris: the same selection (FAST corners "
-                  "ranked by Harris score) without ORB's orientation and 31-px border, each pixel searched once"},
+                  "ranked by Harris score, from the LK pyramid's Scharr derivatives) without ORB's orientation and 31-px "
+                  "border, each pixel searched once"},
                  {"grid", VOBENCH_PARAM_INT, "4", 1, 16, "", "detection grid: cells per side"},
                  {"cell_overlap", VOBENCH_PARAM_INT, "32", 0, 200, "", "overlap of grid cells, px (ORB border is 31 px)"},
                  {"fast_threshold", VOBENCH_PARAM_INT, "20", 1, 200, "", "initial FAST threshold of every cell"},
@@ -61,16 +66,17 @@ public:
                  {"dbscan_min_points", VOBENCH_PARAM_INT, "2", 1, 100, "", "DBSCAN minPts"},
                  {"redetect_below", VOBENCH_PARAM_INT, "150", 0, 5000, "", "detect new features when fewer are tracked"},
                  {"keyframe_interval", VOBENCH_PARAM_INT, "4", 1, 100, "", "a new key frame every n frames (the paper's n)"},
-                 {"keyframe_parallax", VOBENCH_PARAM_DOUBLE, "0", 0, 1000, "",
+                 {"keyframe_parallax", VOBENCH_PARAM_DOUBLE, "10", 0, 1000, "",
                   "also a new key frame as soon as the tracked features' median image motion since the key frame exceeds "
                   "this, px at 640 px width (0: off)"},
-                 {"refill_below", VOBENCH_PARAM_INT, "-1", -1, 5000, "",
-                  "at a key frame, top the pool up to max_features when fewer are tracked (-1: redetect_below)"},
+                 {"refill", VOBENCH_PARAM_BOOL, "true", 0, 0, "",
+                  "at every key frame, top the pool up to max_features (false: only when fewer than redetect_below are "
+                  "tracked, the paper)"},
                  {"lk_window", VOBENCH_PARAM_INT, "7", 3, 61, "", "Lucas-Kanade window, px (odd)"},
                  {"lk_levels", VOBENCH_PARAM_INT, "2", 0, 8, "", "Lucas-Kanade pyramid levels above the base (2: three levels in all)"},
                  {"lk_iterations", VOBENCH_PARAM_INT, "30", 1, 1000, "", "Lucas-Kanade iterations"},
                  {"lk_epsilon", VOBENCH_PARAM_DOUBLE, "0.01", 1e-6, 1, "", "Lucas-Kanade convergence, px"},
-                 {"lk_implementation", VOBENCH_PARAM_ENUM, "own", 0, 0, "own|integer|opencv",
+                 {"lk_implementation", VOBENCH_PARAM_ENUM, "integer", 0, 0, "own|integer|opencv",
                   "own: lk_tracker.hpp, cv::calcOpticalFlowPyrLK's computation to the bit with each window row in SIMD lanes "
                   "(1.6-1.9x faster at 7 px); integer: the same with the window sums exact in integer lanes (not OpenCV's "
                   "float rounding); opencv: cv::calcOpticalFlowPyrLK itself"},
@@ -107,7 +113,27 @@ public:
                   "frames between key frames: estimate against the key frame, or hold the key frame's pose"}}};
     }
 
-    void start(const vobench_camera& camera, const vobench::sdk::Params& p, uint64_t seed) override {
+    // A profile's parameter defaults (see the "profile" parameter); explicitly given parameters win.
+    static std::map<std::string, std::string> profile_defaults(const std::string& profile) {
+        const std::map<std::string, std::string> keyframes{
+            {"keyframe_parallax", "0"}, {"refill", "false"}, {"detector", "orb"}, {"lk_implementation", "own"}, {"max_features", "500"}};
+        if (profile == "keyframes") return keyframes;
+        if (profile == "paper") {
+            std::map<std::string, std::string> paper = keyframes;
+            paper.insert({{"lk_flow_prior", "false"},
+                          {"lk_fb_threshold", "0"},
+                          {"depth_weighting", "false"},
+                          {"depth_interpolation", "false"},
+                          {"rolling_shutter_ms", "0"},
+                          {"refinement", "umeyama"}});
+            return paper;
+        }
+        if (profile == "refresh") return {{"keyframe_interval", "1"}};
+        return {};
+    }
+
+    void start(const vobench_camera& camera, const vobench::sdk::Params& given, uint64_t seed) override {
+        const vobench::sdk::Params p = given.with_defaults(profile_defaults(given.get_string("profile")));
         camera_ = camera;
         K_ = vobench::rgbd::camera_matrix(camera);
         dist_ = vobench::rgbd::distortion_of(camera);
@@ -117,9 +143,7 @@ public:
         g.overlap_px = static_cast<int>(p.get_int("cell_overlap"));
         g.threshold_init = static_cast<int>(p.get_int("fast_threshold"));
         g.per_cell_target = std::max(4, 2 * max_features_ / (g.grid * g.grid));
-        const std::string profile = p.get_string("profile");
-        const bool fast_harris = profile == "parallax" || p.get_string("detector") == "fast_harris";
-        g.kind = fast_harris && profile != "paper" ? put_vo::CornerKind::fast_harris : put_vo::CornerKind::orb;
+        g.kind = p.get_string("detector") == "fast_harris" ? put_vo::CornerKind::fast_harris : put_vo::CornerKind::orb;
         // No corner so near the edge that its LK window leaves the image on the coarsest level (a deep
         // pyramid still leaves the middle half of the image to search).
         const int w = static_cast<int>(p.get_int("lk_window"));
@@ -133,8 +157,7 @@ public:
         redetect_below_ = static_cast<int>(p.get_int("redetect_below"));
         keyframe_interval_ = static_cast<int>(p.get_int("keyframe_interval"));
         keyframe_parallax_px_ = p.get_double("keyframe_parallax") * camera.width / 640.0;
-        refill_below_ = static_cast<int>(p.get_int("refill_below"));
-        if (refill_below_ < 0) refill_below_ = redetect_below_;
+        refill_ = p.get_bool("refill");
         lk_fb_threshold_ = p.get_double("lk_fb_threshold");
         const std::string lk = p.get_string("lk_implementation");
         own_lk_ = lk != "opencv";
@@ -159,25 +182,6 @@ public:
         max_rotation_ = p.get_double("max_rotation_deg") * M_PI / 180.0;
         estimate_every_frame_ = p.get_string("intermediate_pose") == "estimate";
         readout_s_ = p.get_double("rolling_shutter_ms") * 1e-3;
-        if (profile == "paper") {
-            flow_prior_ = false;
-            lk_fb_threshold_ = 0;
-            ransac_.depth_weighted_refinement = false;
-            noise_refinement_ = false;
-            depth_range_.interpolate = false;
-            readout_s_ = 0;
-            keyframe_parallax_px_ = 0;
-            refill_below_ = redetect_below_;
-        }
-        if (profile == "refresh") {
-            keyframe_interval_ = 1;
-            redetect_below_ = max_features_;
-            refill_below_ = max_features_;
-        }
-        if (profile == "parallax") {
-            keyframe_parallax_px_ = 10.0 * camera.width / 640.0;
-            refill_below_ = max_features_;
-        }
         rng_.seed(seed);
         reset();
     }
@@ -399,7 +403,8 @@ private:
         keyframe_points_.clear();
         keep_features_with_depth(depth, scale, tracked_, keyframe_points_);
         for (Feature& f : tracked_) f.origin = f.position;
-        if (static_cast<int>(tracked_.size()) >= refill_below_) return;
+        if (!refill_ && static_cast<int>(tracked_.size()) >= redetect_below_) return;
+        if (static_cast<int>(tracked_.size()) >= max_features_) return;
         std::vector<cv::KeyPoint> keypoints;
         {
             Host::Stage s(host(), "detection");
@@ -453,8 +458,8 @@ private:
     cv::Matx33d K_;
     cv::Mat dist_;
     std::unique_ptr<put_vo::GridDetector> detector_;
-    int max_features_ = 500, min_points_ = 2, redetect_below_ = 150, refill_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2,
-        min_inliers_ = 10;
+    int max_features_ = 350, min_points_ = 2, redetect_below_ = 150, keyframe_interval_ = 4, lk_levels_ = 2, min_inliers_ = 10;
+    bool refill_ = true;
     double keyframe_parallax_px_ = 0;
     double lk_fb_threshold_ = 1.0, eps_ = 5, min_inlier_ratio_ = 0.25, max_translation_ = 1, max_rotation_ = 1;
     vobench::rgbd::DepthRange depth_range_;
