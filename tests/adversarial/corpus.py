@@ -249,7 +249,9 @@ def put_vo_params(args, w):
               "parallax_negative": ({"keyframe_parallax": "-10"}, r"parameter 'keyframe_parallax': '-10' is outside"),
               "parallax_nan": ({"keyframe_parallax": "nan"}, r"parameter 'keyframe_parallax': 'nan' is not a finite number"),
               "refill_not_bool": ({"refill": "-2"}, r"parameter 'refill': '-2' is not a boolean"),
-              "refill_off": ({"refill": "false", "keyframe_parallax": "0"}, None)}
+              "refill_off": ({"refill": "false", "keyframe_parallax": "0"}, None),
+              "gate_fallback_off": ({"gate_fallback": "false"}, None),
+              "gate_fallback_not_bool": ({"gate_fallback": "2"}, r"parameter 'gate_fallback': '2' is not a boolean")}
     for name, (params, pattern) in values.items():
         out = os.path.join(w, "put_vo_params_" + name)
         path = os.path.join(w, f"put_vo_params_{name}.yaml")
