@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <limits>
 
@@ -69,6 +70,16 @@ std::pair<cv::Mat, cv::Mat> moved_texture(float dx, float dy) {
     return {a, b};
 }
 
+// The first n colour frames of a TUM-layout sequence, grey.
+std::vector<cv::Mat> first_frames(const std::filesystem::path& dir, std::size_t n) {
+    std::ifstream list(dir / "rgb.txt");
+    std::vector<cv::Mat> frames;
+    for (std::string line; std::getline(list, line) && frames.size() < n;)
+        if (!line.empty() && line[0] != '#')
+            frames.push_back(cv::imread((dir / line.substr(line.find(' ') + 1)).string(), cv::IMREAD_GRAYSCALE));
+    return frames;
+}
+
 }  // namespace
 
 TEST_CASE("track_lk: OpenCV's tracks bit for bit on a moved texture, at the true shift", "[put_vo][lk]") {
@@ -104,11 +115,7 @@ TEST_CASE("track_lk: OpenCV's tracks bit for bit on a moved texture, at the true
 
 TEST_CASE("track_lk: OpenCV's tracks bit for bit on real fr1/rpy frames", "[put_vo][lk]") {
     VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
-    std::ifstream list(dir / "rgb.txt");
-    std::vector<cv::Mat> frames;
-    for (std::string line; std::getline(list, line) && frames.size() < 12;)
-        if (!line.empty() && line[0] != '#')
-            frames.push_back(cv::imread((dir / line.substr(line.find(' ') + 1)).string(), cv::IMREAD_GRAYSCALE));
+    const std::vector<cv::Mat> frames = first_frames(dir, 12);
     REQUIRE(frames.size() == 12);
     put_vo::LkOptions o;  // put_vo's settings: 7-px window, two levels above the base, 30 iterations, ε 0.01
     std::size_t compared = 0, tracked = 0;
@@ -158,11 +165,7 @@ TEST_CASE("track_lk: points off the image fail as OpenCV fails them; a pyramid w
 // which can only move a search's stopping point by about a step under ε.
 TEST_CASE("track_lk: integer sums keep OpenCV's tracks to a fraction of ε on real fr1/rpy frames", "[put_vo][lk]") {
     VOBENCH_REQUIRE_DATA(dir, "real/rgbd_dataset_freiburg1_rpy");
-    std::ifstream list(dir / "rgb.txt");
-    std::vector<cv::Mat> frames;
-    for (std::string line; std::getline(list, line) && frames.size() < 12;)
-        if (!line.empty() && line[0] != '#')
-            frames.push_back(cv::imread((dir / line.substr(line.find(' ') + 1)).string(), cv::IMREAD_GRAYSCALE));
+    const std::vector<cv::Mat> frames = first_frames(dir, 12);
     REQUIRE(frames.size() == 12);
     put_vo::LkOptions o;
     o.integer_sums = true;

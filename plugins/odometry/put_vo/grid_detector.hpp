@@ -41,7 +41,7 @@ private:
     GridDetectorOptions options_;
     std::vector<int> thresholds_;  // per cell, carried between calls
     std::vector<cv::Ptr<cv::ORB>> orbs_;
-    cv::Mat derivatives_;  // fast_harris, when not given: the current image's Scharr derivatives
+    cv::Mat derivatives_;  // fast_harris: the searched image's Scharr derivatives (given, or computed here)
 };
 
 // The Harris & Stephens (1988) corner response det(M) − k·trace(M)² at pixel (x, y), M the sum over

@@ -51,7 +51,8 @@ public:
                   "every keyframe_interval frames or as soon as the features moved keyframe_parallax px, the pool refilled at "
                   "each, FAST-Harris corners, integer LK sums, 350 features. keyframes: put_vo 1.0's default (key frames by "
                   "count only, refill only below redetect_below, ORB corners, OpenCV's LK to the bit, 500 features: "
-                  "keyframe_parallax 0, refill false, detector orb, lk_implementation own, max_features 500). paper: §5.1 as "
+                  "keyframe_parallax 0, refill false, detector orb, lk_implementation own, max_features 500, gate_fallback false). "
+                  "paper: §5.1 as "
                   "written — keyframes, and lk_flow_prior false, lk_fb_threshold 0, depth_weighting false, depth_interpolation "
                   "false, rolling_shutter_ms 0, refinement umeyama. refresh: every frame a key frame (keyframe_interval 1)"},
                  {"max_features", VOBENCH_PARAM_INT, "350", 20, 5000, "", "largest number of tracked features"},
