@@ -410,3 +410,49 @@ TEST_CASE("mosaic_noise: the noise lands on the RGGB mosaic and is interpolated 
     CHECK(parse_effects("").mosaic_noise == false);
     CHECK(kinect2().mosaic_noise_dn == 0);  // not measured: its noise stays per pixel
 }
+
+TEST_CASE("smooth_noise: a second, smooth part of the colour noise with the set σ and correlation, on by default, Kinect v1 only",
+          "[synth][sensor]") {
+    TestRig rig(2.0);
+    const auto render = [&](const std::string& effects) {
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects(effects);
+        return Renderer(rig.scene, sensor, 5).render(0, rig.pose, rig.pose, 0.1, false).color;
+    };
+    CHECK(cv::norm(render(""), render("+smooth_noise"), cv::NORM_INF) == 0);  // on by default
+    const cv::Mat clean = render("none"), white = render("none,+image_noise"), both = render("none,+image_noise,+smooth_noise");
+    // The smooth part alone: both renderings draw the same per-pixel noise, so their difference is the
+    // smooth part and two roundings. Its σ, and its correlation with the right neighbour, which for
+    // white noise blurred by a Gaussian kernel k is Σ k_i k_{i+1} / Σ k_i² (≈ e^{-1/4} at σ = 1 px).
+    const SensorModel k1 = kinect1();
+    const double sigma_px = k1.smooth_noise_px * clean.cols / 640.0;
+    const cv::Mat k = cv::getGaussianKernel(2 * static_cast<int>(std::ceil(4 * sigma_px)) + 1, sigma_px, CV_64F);
+    double kk = 0, k1k = 0;
+    for (int i = 0; i < k.rows; ++i) {
+        kk += k.at<double>(i) * k.at<double>(i);
+        if (i + 1 < k.rows) k1k += k.at<double>(i) * k.at<double>(i + 1);
+    }
+    for (int ch = 0; ch < 3; ++ch) {
+        double s2 = 0, t2 = 0, sxy = 0;
+        int n = 0;
+        for (int v = 0; v < clean.rows; ++v)
+            for (int u = 0; u + 1 < clean.cols; ++u) {
+                const double c0 = clean.at<cv::Vec3b>(v, u)[ch], c1 = clean.at<cv::Vec3b>(v, u + 1)[ch];
+                if (c0 < 30 || c0 > 225 || c1 < 30 || c1 > 225) continue;
+                const double a = both.at<cv::Vec3b>(v, u)[ch] - white.at<cv::Vec3b>(v, u)[ch];
+                const double b = both.at<cv::Vec3b>(v, u + 1)[ch] - white.at<cv::Vec3b>(v, u + 1)[ch];
+                s2 += a * a;
+                t2 += b * b;
+                sxy += a * b;
+                ++n;
+            }
+        REQUIRE(n > 10000);
+        INFO("channel " << ch);
+        // Two roundings add up to 1/6 of a level² of independent noise.
+        CHECK(std::sqrt(s2 / n) == Approx(std::sqrt(k1.smooth_noise_dn * k1.smooth_noise_dn + 1.0 / 6)).epsilon(0.1));
+        const double expected = k1k / kk * k1.smooth_noise_dn * k1.smooth_noise_dn / (k1.smooth_noise_dn * k1.smooth_noise_dn + 1.0 / 6);
+        CHECK(sxy / std::sqrt(s2 * t2) == Approx(expected).margin(0.08));
+    }
+    CHECK(parse_effects("").smooth_noise == true);
+    CHECK(kinect2().smooth_noise_dn == 0);  // not measured: no smooth part
+}

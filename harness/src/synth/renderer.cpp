@@ -275,6 +275,25 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
         const bool along_row = (ch == 2) == even_row;
         return along_row ? 0.5 * (mosaic_at(u - 1, v) + mosaic_at(u + 1, v)) : 0.5 * (mosaic_at(u, v - 1) + mosaic_at(u, v + 1));
     };
+    // smooth_noise: a second part of the noise, white noise blurred to a correlation length of
+    // smooth_noise_px — the real frames' flat-pixel noise has twice the power of white noise that
+    // matches their finest scale, and more correlation between neighbours (docs/synthetic-sensors.md).
+    cv::Mat smooth;
+    if (noise_dn > 0 && fx.smooth_noise && sensor_.smooth_noise_dn > 0) {
+        const double sigma = sensor_.smooth_noise_px * W / 640.0;
+        const int ksize = 2 * static_cast<int>(std::ceil(4 * sigma)) + 1;
+        const cv::Mat k = cv::getGaussianKernel(ksize, sigma, CV_64F);
+        const double gain = k.dot(k);  // the blur's 2-D kernel is k kᵀ: its squares sum to (Σ k²)²
+        const HashStream smooth_noise(seed_, kSmoothColorNoise, frame);
+        smooth.create(H, W, CV_32FC3);
+        tbb::parallel_for(0, H, [&](int v) {
+            float* m = smooth.ptr<float>(v);
+            const uint64_t row = static_cast<uint64_t>(v) * W * 3;
+            for (int i = 0; i < W * 3; ++i) m[i] = static_cast<float>(gaussian_fast(smooth_noise(row + static_cast<uint64_t>(i))));
+        });
+        cv::GaussianBlur(smooth, smooth, cv::Size(ksize, ksize), sigma, sigma, cv::BORDER_REFLECT_101);
+        smooth *= sensor_.smooth_noise_dn / gain;  // unit variance, then σ
+    }
     std::vector<double> du2(static_cast<std::size_t>(W));  // (u − cx)², per column
     for (int u = 0; u < W; ++u) du2[static_cast<std::size_t>(u)] = (u - sensor_.color.cx) * (u - sensor_.color.cx);
     tbb::parallel_for(0, H, [&](int v) {
@@ -287,9 +306,10 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
                 static_cast<float>(1.0 - vignetting * std::min(1.0, (du2[static_cast<std::size_t>(u)] + dv2) / half_diagonal2));
             const cv::Vec3f c = in[u] * fall_off;
             for (int ch = 0; ch < 3; ++ch) {
-                const double noise = on_mosaic      ? demosaiced_noise(u, v, ch)
-                                     : noise_dn > 0 ? noise_dn * gaussian_fast(color_noise(row_index + static_cast<uint64_t>(u) * 3 + ch))
-                                                    : 0.0;
+                const double noise = (on_mosaic      ? demosaiced_noise(u, v, ch)
+                                      : noise_dn > 0 ? noise_dn * gaussian_fast(color_noise(row_index + static_cast<uint64_t>(u) * 3 + ch))
+                                                     : 0.0) +
+                                     (smooth.empty() ? 0.0 : smooth.ptr<cv::Vec3f>(v)[u][ch]);
                 // The tone curve acts on the signal; the sensor's noise is added after it (its σ was
                 // measured on the real images, tone curve and all).
                 const double y = srgb(c[ch]);

@@ -30,7 +30,8 @@ enum RenderSalt : uint64_t {
     kTofNoise,
     kLostReturn,
     kEdgeDropout,
-    kCorrelatedDisparity
+    kCorrelatedDisparity,
+    kSmoothColorNoise
 };
 
 struct RenderedFrame {

@@ -26,13 +26,14 @@ enum class DepthPrinciple { StructuredLight, TimeOfFlight };
 // costs an algorithm can be measured. All on by default except stamp_offsets, which only applies to
 // built-in trajectories (with --stamps the real stamps are used whatever it says), tone_curve,
 // which matches the real frames' contrast but makes feature tracking easier than on them, and
-// mosaic_noise, which matches one noise statistic and overshoots another (docs/synthetic-sensors.md).
+// and mosaic_noise, which matches one noise statistic and overshoots another (docs/synthetic-sensors.md).
 struct Effects {
     // Colour camera.
     bool motion_blur = true;      // integration over the exposure time
     bool optics_blur = true;      // lens and demosaicing point spread (Gaussian)
     bool image_noise = true;      // shot and read noise
     bool mosaic_noise = false;    // the noise added on the Bayer mosaic and interpolated with it (off: see docs/synthetic-sensors.md)
+    bool smooth_noise = true;     // a second, spatially smooth part of the colour noise (Kinect v1: measured; docs/synthetic-sensors.md)
     bool vignetting = true;       // radial fall-off of the lens
     bool auto_exposure = true;    // a gain that follows the scene's brightness with a lag
     bool tone_curve = false;      // the camera's contrast boost in display space (off: see docs/synthetic-sensors.md)
@@ -119,6 +120,8 @@ struct SensorModel {
     double exposure_s = 0.015;
     double color_noise_dn = 2.0;            // σ of additive noise, 8-bit digital numbers
     double mosaic_noise_dn = 0;             // mosaic_noise: σ at each site of the RGGB mosaic (0: not measured, noise per pixel)
+    double smooth_noise_dn = 0;             // smooth_noise: σ of the smooth part per channel (0: not measured, none)
+    double smooth_noise_px = 1.0;           // ... and its Gaussian correlation length, px of a 640-wide image
     double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
     double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)

@@ -38,7 +38,9 @@ namespace vobench::synth {
 //    (effect measured_reference, measured_path.hpp); built-in trajectories render as in 6.
 // 8: Kinect v1's auto-exposure follows the scene with τ 0.04 s instead of 0.3 s (measured on
 //    fr1/rpy's brightness changes; SensorModel::exposure_time_constant_s).
-constexpr int kGeneratorVersion = 8;
+// 9: Kinect v1's colour noise gains a smooth part (effect smooth_noise: 2.0 DN blurred to 1 px),
+//    measured on fr1/rpy's flat-pixel noise; Kinect v2 renders as in 8.
+constexpr int kGeneratorVersion = 9;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
