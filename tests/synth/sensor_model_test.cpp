@@ -37,6 +37,13 @@ struct TestRig {
     }
 };
 
+// Kinect v1's colour image of the rig's view (seed 5, frame 0, no motion) with `effects`.
+cv::Mat kinect1_color(const TestRig& rig, const std::string& effects) {
+    SensorModel sensor = kinect1();
+    sensor.effects = parse_effects(effects);
+    return Renderer(rig.scene, sensor, 5).render(0, rig.pose, rig.pose, 0.1, false).color;
+}
+
 struct Stats {
     double mean = 0, std = 0;
     int valid = 0, total = 0;
@@ -367,12 +374,8 @@ TEST_CASE("Kinect v1 loses the depth of a dark wall in patches of its correlatio
 
 TEST_CASE("mosaic_noise: the noise lands on the RGGB mosaic and is interpolated with it, on by default, Kinect v1 only",
           "[synth][sensor]") {
-    TestRig rig(2.0);
-    const auto render = [&](const std::string& effects) {
-        SensorModel sensor = kinect1();
-        sensor.effects = parse_effects(effects);
-        return Renderer(rig.scene, sensor, 5).render(0, rig.pose, rig.pose, 0.1, false).color;
-    };
+    const TestRig rig(2.0);
+    const auto render = [&](const std::string& effects) { return kinect1_color(rig, effects); };
     const cv::Mat clean = render("none"), per_pixel = render("none,+image_noise"), mosaic = render("none,+image_noise,+mosaic_noise");
     CHECK(cv::norm(render(""), render("-mosaic_noise"), cv::NORM_INF) == 0);  // off by default
     // The noise of channel ch at red sites (even row, even column) and its correlation with the right
@@ -413,12 +416,8 @@ TEST_CASE("mosaic_noise: the noise lands on the RGGB mosaic and is interpolated 
 
 TEST_CASE("smooth_noise: a second, smooth part of the colour noise with the set σ and correlation, on by default, Kinect v1 only",
           "[synth][sensor]") {
-    TestRig rig(2.0);
-    const auto render = [&](const std::string& effects) {
-        SensorModel sensor = kinect1();
-        sensor.effects = parse_effects(effects);
-        return Renderer(rig.scene, sensor, 5).render(0, rig.pose, rig.pose, 0.1, false).color;
-    };
+    const TestRig rig(2.0);
+    const auto render = [&](const std::string& effects) { return kinect1_color(rig, effects); };
     CHECK(cv::norm(render(""), render("+smooth_noise"), cv::NORM_INF) == 0);  // on by default
     const cv::Mat clean = render("none"), white = render("none,+image_noise"), both = render("none,+image_noise,+smooth_noise");
     // The smooth part alone: both renderings draw the same per-pixel noise, so their difference is the
