@@ -64,6 +64,9 @@ TEST_CASE("stats: noise, missing depth, plane-fit noise and stamp offsets of fra
     CHECK(value(s, "image.flat_noise_ms") == Approx(8.8).epsilon(0.1));
     CHECK(std::abs(value(s, "image.flat_noise_corr_right")) < 0.06);
     CHECK(std::abs(value(s, "image.flat_noise_corr_below")) < 0.06);
+    // White noise spreads its variance (σ² plus 1/12 for the rounding) evenly over the frequency plane;
+    // wavelengths of 2–4 px take the annulus 1/4–1/2 cycle a pixel, 3π/16 of it. The ramp lies at long ones.
+    CHECK(value(s, "image.spectrum_2_4px") == Approx((9.0 + 1.0 / 12) * 3 * M_PI / 16).epsilon(0.1));
 }
 
 TEST_CASE("stats on the real TUM sample: missing depth equals a direct count over its pairs", "[synth][stats][reference]") {

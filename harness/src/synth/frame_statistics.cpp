@@ -4,6 +4,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/image_spectrum.hpp"
 #include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
 #include "synth/stamp_latency.hpp"
@@ -216,6 +217,19 @@ void measure_flat_noise(const cv::Mat& grey, Accumulator& acc) {
     acc.ratio("image.flat_noise_corr_below", "noise on flat pixels, correlation with the neighbour below", below, rr);
 }
 
+// The grey image's variance by octave of wavelength and its spectral exponent (image_spectrum.hpp).
+void measure_image_spectrum(const cv::Mat& grey, Accumulator& acc) {
+    const auto spectrum = measure_spectrum(grey, kBorderPx);
+    if (!spectrum) return;
+    for (int k = 0; k < ImageSpectrum::kBands; ++k) {
+        const int shortest = 2 << k, longest = 4 << k;
+        acc.mean(fmt::format("image.spectrum_{}_{}px", shortest, longest),
+                 fmt::format("image variance at wavelengths {}–{} px, grey levels²", shortest, longest),
+                 spectrum->band_variance[static_cast<std::size_t>(k)]);
+    }
+    acc.mean("image.spectrum_exponent", "spectral exponent α (power ∝ 1/f^α, wavelengths 8–128 px)", spectrum->exponent);
+}
+
 void measure_image(const cv::Mat& bgr, Accumulator& acc) {
     cv::Mat grey8, grey;
     cv::cvtColor(bgr, grey8, cv::COLOR_BGR2GRAY);
@@ -245,6 +259,7 @@ void measure_image(const cv::Mat& bgr, Accumulator& acc) {
     const double g = cv::mean(magnitude)[0];
     if (g > 0) acc.mean("image.edge_sharpness", "edge sharpness (Laplacian variance / mean gradient²)", stddev[0] * stddev[0] / (g * g));
     measure_flat_noise(grey, acc);
+    measure_image_spectrum(grey, acc);
     acc.mean("image.mean_grey", "mean grey level", cv::mean(grey8)[0]);
     acc.ratio("image.saturated", "share of saturated pixels (≥ 250)", cv::countNonZero(grey8 >= 250), grey.total());
 }

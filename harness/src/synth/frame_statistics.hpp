@@ -14,6 +14,8 @@
 //   FAST corners per frame at threshold 20 with non-maximum suppression (put_vo's detector setting);
 //   sharpness: the variance of the Laplacian (motion blur and defocus lower it), and the same divided
 //     by the squared mean gradient (edge sharpness, independent of how much texture there is);
+//   the grey image's variance by octave of wavelength (2–4 px up to 128–256 px) and its spectral
+//     exponent α (image_spectrum.hpp: where contrast is missing, by scale);
 //   brightness: mean grey level and the share of saturated pixels (≥ 250);
 //   brightness change from the colour frame before (auto-exposure and gain; photometric_gain.hpp):
 //     the median and 90th percentile over the frames of the |log ratio| of tracked corners' linear
