@@ -17,8 +17,8 @@ namespace vobench::synth {
 
 struct ImageSpectrum {
     // Variance (grey levels²) at wavelengths [2^(k+1), 2^(k+2)) px for k = 0..6: 2–4 px up to 128–256
-    // px. Along the axes; the diagonal frequencies past 1/2 cycle a pixel (wavelengths under 2 px
-    // along no axis) are left out.
+    // px, by the frequency's magnitude; the spectrum's corners past 1/2 cycle a pixel (diagonal
+    // wavelengths under 2 px) are left out.
     static constexpr int kBands = 7;
     std::array<double, kBands> band_variance{};
     // α of a least-squares fit of log power density against log frequency over the wavelengths 8–128 px
