@@ -157,7 +157,8 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"stamp_latency", &Effects::stamp_latency},
                                                                             {"stamp_jitter", &Effects::stamp_jitter},
                                                                             {"depth_distortion", &Effects::depth_distortion},
-                                                                            {"measured_reference", &Effects::measured_reference}};
+                                                                            {"measured_reference", &Effects::measured_reference},
+                                                                            {"reference_frame_error", &Effects::reference_frame_error}};
     return table;
 }
 

@@ -5,6 +5,7 @@
 #include "synth/frame_plan.hpp"
 #include "synth/measured_path.hpp"
 #include "synth/office.hpp"
+#include "synth/reference_frame_error.hpp"
 #include "synth/renderer.hpp"
 #include "synth/trajectory_families.hpp"
 #include "util/files.hpp"
@@ -328,6 +329,14 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         for (const auto& p : paths.camera)
             if (p.t >= plan.front().color_stamp - 0.05 && p.t <= plan.back().color_stamp + 0.05) gt.push_back(p);
     }
+    // A real reference describes a frame a little turned from the optical one (reference_frame_error.hpp):
+    // measured for TUM's references, so for camera-pose files; PUT's marker files carry their own
+    // camera-in-marker calibration, not measured here. (icl-povray writes its camera files as it renders.)
+    const bool turn_reference =
+        sensor.effects.reference_frame_error && paths.marker.empty() && !is_trajectory_family(o.trajectory) && !povray;
+    const double turn_rad = turn_reference ? sensor.reference_frame_error_deg * M_PI / 180.0 : 0.0;
+    const Eigen::Quaterniond turn = reference_frame_error(o.seed, turn_rad);
+    turn_reference_frame(gt, turn);
     if (!povray) {
         metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
                            putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
@@ -379,6 +388,9 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
         {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
         {"room_boxes", scene.boxes.size()},
+        {"reference_frame_error",
+         {{"angle_deg", turn_rad * 180.0 / M_PI},
+          {"axis", as_list(turn_rad > 0 ? Eigen::Vector3d(Eigen::AngleAxisd(turn).axis()) : Eigen::Vector3d::Zero())}}},
         {"measured_reference",
          {{"bandwidth_s", measured.bandwidth_s},
           {"noise_rotation_deg", as_list(measured.noise.rotation_rad * (180.0 / M_PI))},
