@@ -44,7 +44,8 @@ TEST_CASE("reference frame error: the angle asked for, about an axis uniform on 
     CHECK_FALSE(synth::reference_frame_error(1, 0.02).isApprox(synth::reference_frame_error(2, 0.02)));
 }
 
-TEST_CASE("synth: a TUM trajectory's reference is the rendered camera turned by 1.5°; the images are not", "[synth]") {
+TEST_CASE("synth +reference_frame_error: a TUM trajectory's reference is the rendered camera turned by 1.5°; the images are not",
+          "[synth]") {
     test::TempDir tmp;
     {
         std::ofstream gt(tmp.path() / "camera.txt");
@@ -69,7 +70,7 @@ TEST_CASE("synth: a TUM trajectory's reference is the rendered camera turned by 
         REQUIRE(synth::synthesize(o).frames == 2);
         return o.out;
     };
-    const fs::path with = render("", "with"), without = render("-reference_frame_error", "without");
+    const fs::path with = render("+reference_frame_error", "with"), without = render("", "without");
     const auto gt_with = metrics::read_trajectory(with / "groundtruth.txt").poses;
     const auto gt_without = metrics::read_trajectory(without / "groundtruth.txt").poses;
     REQUIRE(gt_with.size() == gt_without.size());
@@ -98,5 +99,6 @@ TEST_CASE("synth: a TUM trajectory's reference is the rendered camera turned by 
                                meta_with["reference_frame_error"]["axis"][1].get<double>(),
                                meta_with["reference_frame_error"]["axis"][2].get<double>());
     CHECK((axis - Eigen::AngleAxisd(expected).axis()).norm() < 1e-12);
+    CHECK(meta_without["effects"]["reference_frame_error"] == false);  // off by default
     CHECK(meta_without["reference_frame_error"]["angle_deg"].get<double>() == 0.0);
 }

@@ -329,9 +329,9 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         for (const auto& p : paths.camera)
             if (p.t >= plan.front().color_stamp - 0.05 && p.t <= plan.back().color_stamp + 0.05) gt.push_back(p);
     }
-    // A real reference describes a frame a little turned from the optical one (reference_frame_error.hpp):
-    // measured for TUM's references, so for camera-pose files; PUT's marker files carry their own
-    // camera-in-marker calibration, not measured here. (icl-povray writes its camera files as it renders.)
+    // +reference_frame_error (off by default): a reference describing a frame a little turned from the
+    // optical one (reference_frame_error.hpp), for camera-pose files as TUM's; PUT's marker files carry
+    // their own camera-in-marker calibration, not looked at here. (icl-povray writes its camera files as it renders.)
     const bool turn_reference =
         sensor.effects.reference_frame_error && paths.marker.empty() && !is_trajectory_family(o.trajectory) && !povray;
     const double turn_rad = turn_reference ? sensor.reference_frame_error_deg * M_PI / 180.0 : 0.0;

@@ -40,10 +40,8 @@ namespace vobench::synth {
 //    fr1/rpy's brightness changes; SensorModel::exposure_time_constant_s).
 // 9: Kinect v1's colour noise gains a smooth part (effect smooth_noise: 2.0 DN blurred to 1 px),
 //    measured on fr1/rpy's flat-pixel noise; Kinect v2 renders as in 8.
-// 10: the reference written for a TUM-format trajectory file describes a frame turned 1.5° from the
-//    rendered camera's, about an axis drawn from the seed (effect reference_frame_error,
-//    reference_frame_error.hpp); the images and every other file are as in 9.
-constexpr int kGeneratorVersion = 10;
+//    (+reference_frame_error, off by default, changes only groundtruth.txt and synth.json.)
+constexpr int kGeneratorVersion = 9;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
