@@ -8,6 +8,8 @@
 #include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <random>
 
 namespace vobench::test {
@@ -27,6 +29,11 @@ std::optional<fs::path> data_dir(const std::string& sub) {
 fs::path fault_plugin(const std::string& name) { return fs::path(VOBENCH_FAULT_PLUGIN_DIR) / (name + ".so"); }
 fs::path plugin(const std::string& name) { return fs::path(VOBENCH_PLUGIN_DIR) / ("vobench_" + name + ".so"); }
 fs::path cli() { return fs::path(VOBENCH_CLI); }
+
+std::string file_bytes(const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
 
 TempDir::TempDir() {
     std::random_device rd;

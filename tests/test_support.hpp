@@ -18,6 +18,9 @@ std::filesystem::path fault_plugin(const std::string& name);  // build/tests/fau
 std::filesystem::path plugin(const std::string& name);        // build/plugins/vobench_<name>.so
 std::filesystem::path cli();                                  // build/bin/vobench
 
+// The bytes of a file ("" when it cannot be read), to compare files whole.
+std::string file_bytes(const std::filesystem::path& file);
+
 // A fresh, empty folder under the system temp dir, removed at destruction.
 class TempDir {
 public:

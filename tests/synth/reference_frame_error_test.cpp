@@ -16,17 +16,6 @@
 using namespace vobench;
 namespace fs = std::filesystem;
 
-namespace {
-
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
-}  // namespace
-
 TEST_CASE("reference frame error: the angle asked for, about an axis uniform on the sphere", "[synth]") {
     CHECK(synth::reference_frame_error(7, 0.0).isApprox(Eigen::Quaterniond::Identity()));
     Eigen::Vector3d sum = Eigen::Vector3d::Zero();
@@ -84,15 +73,15 @@ TEST_CASE("synth +reference_frame_error: a TUM trajectory's reference is the ren
         CHECK(Eigen::AngleAxisd(turn).angle() * 180.0 / M_PI == Approx(1.5).epsilon(1e-5));
     }
     // The images are the same bytes: only the reference changes.
-    CHECK(slurp(with / "rgb.txt") == slurp(without / "rgb.txt"));
-    std::istringstream lines(slurp(with / "rgb.txt"));
+    CHECK(test::file_bytes(with / "rgb.txt") == test::file_bytes(without / "rgb.txt"));
+    std::istringstream lines(test::file_bytes(with / "rgb.txt"));
     std::string line, stamp, file;
     while (std::getline(lines, line))
         if (!line.empty() && line[0] != '#' && std::istringstream(line) >> stamp >> file) {
-            CHECK(slurp(with / file) == slurp(without / file));
+            CHECK(test::file_bytes(with / file) == test::file_bytes(without / file));
         }
-    const auto meta_with = nlohmann::json::parse(slurp(with / "synth.json"));
-    const auto meta_without = nlohmann::json::parse(slurp(without / "synth.json"));
+    const auto meta_with = nlohmann::json::parse(test::file_bytes(with / "synth.json"));
+    const auto meta_without = nlohmann::json::parse(test::file_bytes(without / "synth.json"));
     CHECK(meta_with["effects"]["reference_frame_error"] == true);
     CHECK(meta_with["reference_frame_error"]["angle_deg"].get<double>() == Approx(1.5));
     const Eigen::Vector3d axis(meta_with["reference_frame_error"]["axis"][0].get<double>(),

@@ -16,13 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string slurp(const fs::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
-}
-
 // groundtruth.txt must equal marker pose · camera-in-marker (Kraft et al. eq. 10) as written beside it.
 void check_eq10(const fs::path& dir) {
     metrics::ReadOptions o;
@@ -51,8 +44,8 @@ TEST_CASE("synth: the same seed writes byte-identical files, another seed other 
     o.out = tmp.path() / "c";
     synth::synthesize(o);
     for (const char* f : {"rgb.txt", "depth.txt", "groundtruth.txt", "rgb/0.200000.png", "depth/0.200000.png", "synth.json"})
-        CHECK(slurp(tmp.path() / "a" / f) == slurp(tmp.path() / "b" / f));
-    CHECK(slurp(tmp.path() / "a" / "rgb/0.200000.png") != slurp(tmp.path() / "c" / "rgb/0.200000.png"));
+        CHECK(test::file_bytes(tmp.path() / "a" / f) == test::file_bytes(tmp.path() / "b" / f));
+    CHECK(test::file_bytes(tmp.path() / "a" / "rgb/0.200000.png") != test::file_bytes(tmp.path() / "c" / "rgb/0.200000.png"));
     check_eq10(tmp.path() / "a");
 }
 
@@ -120,7 +113,7 @@ TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, 
         o.effects = effects;
         o.out = tmp.path() / name;
         REQUIRE(synth::synthesize(o).frames == 2);
-        return nlohmann::json::parse(slurp(o.out / "synth.json"));
+        return nlohmann::json::parse(test::file_bytes(o.out / "synth.json"));
     };
     const auto with = render("", "with"), without = render("-stamp_latency", "without");
     CHECK(with["effects"]["stamp_latency"] == true);
@@ -139,6 +132,7 @@ TEST_CASE("synth --stamps: each image at its stream's latency before its stamp, 
     CHECK(with["effects"]["stamp_jitter"] == true);
     CHECK(with["camera_clock"]["color"]["fitted"] == false);
     // The lists keep the recorded stamps; the images differ (19 ms at 1 rad/s: 1.1°, ≈ 10 px).
-    CHECK(slurp(tmp.path() / "with" / "depth.txt") == slurp(tmp.path() / "without" / "depth.txt"));
-    CHECK(slurp(tmp.path() / "with" / "depth" / "100.500000.png") != slurp(tmp.path() / "without" / "depth" / "100.500000.png"));
+    CHECK(test::file_bytes(tmp.path() / "with" / "depth.txt") == test::file_bytes(tmp.path() / "without" / "depth.txt"));
+    CHECK(test::file_bytes(tmp.path() / "with" / "depth" / "100.500000.png") !=
+          test::file_bytes(tmp.path() / "without" / "depth" / "100.500000.png"));
 }
