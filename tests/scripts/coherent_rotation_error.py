@@ -15,6 +15,7 @@ import itertools
 import json
 import math
 import pathlib
+import sys
 
 
 def read_tum(path):
@@ -111,7 +112,11 @@ def main():
         run = cell.parent
         if not (run / "trajectory.txt").exists() or not (run / "groundtruth.txt").exists():
             continue
-        pairs = relative_pairs(run, args.delta_frames)
+        try:
+            pairs = relative_pairs(run, args.delta_frames)
+        except (ValueError, IndexError, ZeroDivisionError) as e:  # a broken or empty trajectory file
+            print(f"{run}: skipped, its trajectory or reference cannot be read: {e}", file=sys.stderr)
+            continue
         if not pairs:
             continue
         before = rms_angle(pairs, rotation([0, 0, 0]))
