@@ -336,7 +336,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         sensor.effects.reference_frame_error && paths.marker.empty() && !is_trajectory_family(o.trajectory) && !povray;
     const double turn_rad = turn_reference ? sensor.reference_frame_error_deg * M_PI / 180.0 : 0.0;
     const Eigen::Quaterniond turn = reference_frame_error(o.seed, turn_rad);
-    turn_reference_frame(gt, turn);
+    if (turn_reference) turn_reference_frame(gt, turn);  // off: the poses as they were, to the last bit
     if (!povray) {
         metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
                            putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
