@@ -510,6 +510,15 @@ def synth_inputs(args, w):
             r"--tolerance: '0.1,0.2' is not three numbers")
     refused("fit-distortion with a negative --tolerance",
             ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--expect", "0,1,0", "--tolerance", "-1"], r"negative")
+    refused("fit-distortion with a --reference-turn-deg that is not three finite numbers",
+            ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--fit-turn", "--reference-turn-deg", "nan,0,0"],
+            r"--reference-turn-deg: 'nan,0,0' is not three numbers")
+    refused("fit-distortion with a --depth-latency-ms that is not a finite number",
+            ["synth", "fit-distortion", ten, "--camera", "putk2-kinect1", "--fit-latency", "--depth-latency-ms", "nan"],
+            r"(must be finite|depth-latency-ms)")
+    refused("fit-distortion, joint, on a folder whose reference covers no frame pair",
+            ["synth", "fit-distortion", os.path.join(d, "stats_gt_elsewhere"), "--camera", "putk2-kinect1", "--fit-latency", "--fit-turn"],
+            r"covers no pair")
     # synth undo-distortion writes a corrected copy: never over a folder with contents, never outside
     # its output (a list naming ../ or an absolute path), never with a field that is not three numbers.
     refused("undo-distortion into the folder it reads", ["synth", "undo-distortion", ten, "--out", ten, "--field", "0,1,0"],

@@ -3,6 +3,7 @@
 // cannot be read is an error naming the file.
 #include "synth/disparity_distortion_fit.hpp"
 #include "synth/box_room.hpp"
+#include "synth/reference_frame_error.hpp"
 #include "test_support.hpp"
 
 #include <catch2/catch.hpp>
@@ -30,14 +31,17 @@ cv::Mat distorted(const cv::Mat& z, const synth::PinholeCamera& c, const synth::
     return out;
 }
 
-// 48 frames at 30 Hz of the swinging camera, depth distorted by `delta`, with the exact reference.
-synth::DepthSequence room_sequence(const synth::DepthRays& rays, const synth::DisparityOffset& delta) {
+// 48 frames at 30 Hz of the swinging camera, depth distorted by `delta`, each taken `latency_s` before
+// its stamp; the reference describes a frame turned by `turn_deg` from the camera's (exact otherwise).
+synth::DepthSequence room_sequence(const synth::DepthRays& rays, const synth::DisparityOffset& delta, double latency_s = 0,
+                                   const std::array<double, 3>& turn_deg = {0, 0, 0}) {
     synth::DepthSequence s;
     s.reference = test::swinging_reference(0.5, 3.0);
+    synth::turn_reference_frame(s.reference, synth::reference_turn(turn_deg));
     for (int k = 0; k < 48; ++k) {
         const double stamp = 1.0 + k / 30.0;
         s.stamps.push_back(stamp);
-        s.depth_m.push_back(distorted(test::box_room_view(rays, test::swinging_pose(stamp)).depth, rays.camera(), delta));
+        s.depth_m.push_back(distorted(test::box_room_view(rays, test::swinging_pose(stamp - latency_s)).depth, rays.camera(), delta));
     }
     return s;
 }
@@ -81,6 +85,34 @@ TEST_CASE("fit-distortion: a known disparity offset field is found again, and no
         CHECK(with < 0.01);  // exact depth and poses: only float rounding remains
         if (truth[1] != 0) CHECK(without > 0.1);
     }
+}
+
+TEST_CASE("fit-distortion, joint: the field, the depth latency and the reference's turn are found together", "[synth][stats][distortion]") {
+    const synth::DepthRays rays(test::small_distorted_camera());
+    const synth::DisparityOffset truth{-0.4, 1.0, -1.0};
+    const double latency_s = 0.02;
+    const std::array<double, 3> turn_deg{1.0, -0.6, 0.3};
+    const synth::DepthSequence s = room_sequence(rays, truth, latency_s, turn_deg);
+    synth::DistortionFitOptions options;
+    options.depth_latency_s = 0.01;  // a start 10 ms off
+    options.iterations = 8;
+    options.fit_latency = true;
+    options.fit_reference_turn = true;
+    const synth::DistortionFit fit = synth::fit_disparity_distortion(s, rays, options);
+    const Eigen::Vector3d turn = fit.reference_turn_rad * 180.0 / M_PI;
+    INFO("field " << fit.delta[0] << ", " << fit.delta[1] << ", " << fit.delta[2] << "; latency " << fit.depth_latency_s * 1e3
+                  << " ms; turn " << turn.transpose() << "°");
+    for (std::size_t k = 0; k < 3; ++k) CHECK(std::abs(fit.delta[k] - truth[k]) < 0.03);
+    CHECK(std::abs(fit.depth_latency_s - latency_s) < 0.5e-3);
+    CHECK((turn - Eigen::Vector3d(turn_deg[0], turn_deg[1], turn_deg[2])).norm() < 0.05);
+    // The residual at the fitted values is the exact one's; the field alone, at the wrong latency and
+    // unturned, leaves more.
+    synth::DistortionFitOptions at_fit = options;
+    at_fit.depth_latency_s = fit.depth_latency_s;
+    at_fit.reference_turn_rad = fit.reference_turn_rad;
+    std::size_t pairs = 0;
+    CHECK(synth::corrected_residual_pct(s, rays, 16, fit.delta, at_fit, pairs) < 0.01);
+    CHECK(synth::corrected_residual_pct(s, rays, 16, fit.delta, options, pairs) > 0.1);
 }
 
 TEST_CASE("fit-distortion: a folder that cannot be read is an error naming the file", "[synth][stats][distortion][corpus]") {

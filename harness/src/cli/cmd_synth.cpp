@@ -97,7 +97,7 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
                                    "Fit a Kinect v1's disparity distortion δ = a·r² + b·x + c·y px to a TUM folder's depth and reference");
     static std::string folder, validate, camera = "tum-fr1", expect;
     static double latency_ms = synth::kinect1().depth_latency_s * 1e3;
-    static std::string tolerance = "0.05";
+    static std::string tolerance = "0.05", turn_deg;
     static synth::DistortionFitOptions options;
     c->add_option("folder", folder, "TUM-layout folder with depth.txt and groundtruth.txt (depth 5000 units per metre)")->required();
     c->add_option("--camera", camera, "The colour camera the depth is registered to (a name or a camera file)")->capture_default_str();
@@ -105,11 +105,19 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
     c->add_option("--depth-latency-ms", latency_ms, "The depth stream's latency (synth stats --camera measures it)")->capture_default_str();
     c->add_option("--focal-baseline", options.focal_baseline_px_m, "IR focal length × baseline, px·m")->capture_default_str();
     c->add_option("--iterations", options.iterations, "Gauss–Newton iterations")->check(CLI::Range(1, 100))->capture_default_str();
+    c->add_option("--reference-turn-deg", turn_deg,
+                  "X,Y,Z: the frame the reference describes is turned by this rotation vector (camera axes, degrees)");
+    c->add_flag("--fit-latency", options.fit_latency, "Fit the depth latency with the field (from --depth-latency-ms, within ±50 ms)");
+    c->add_flag("--fit-turn", options.fit_reference_turn, "Fit the reference's turn with the field (from --reference-turn-deg)");
     c->add_option("--expect", expect, "A,B,C: exit 1 unless the fit reproduces these coefficients and lowers the residual at 16 frames");
     c->add_option("--tolerance", tolerance, "For --expect: largest difference per coefficient, px: T for all three, or TA,TB,TC")
         ->capture_default_str();
     c->callback([&exit_code] {
         options.depth_latency_s = latency_ms * 1e-3;
+        if (!turn_deg.empty()) {
+            const synth::DisparityOffset t = parse_offset(turn_deg, "--reference-turn-deg");  // three numbers, as a field's
+            options.reference_turn_rad = Eigen::Vector3d(t[0], t[1], t[2]) * M_PI / 180.0;
+        }
         const synth::CameraSpec spec = synth::camera_by_name_or_file(camera);
         const synth::DepthRays rays(spec.color);
         std::optional<synth::DisparityOffset> expected;
@@ -124,15 +132,23 @@ CLI::App* add_fit_distortion_command(CLI::App& synth, int& exit_code) {
         const auto& d = fit.delta;
         std::cout << fmt::format("{}: δ = {:+.4f}·r² {:+.4f}·x {:+.4f}·y px ({} pairs, {} residuals)\n", folder, d[0], d[1], d[2],
                                  fit.pairs, fit.residuals);
+        const Eigen::Vector3d turn = fit.reference_turn_rad * 180.0 / M_PI;
+        std::cout << fmt::format("{}: depth latency {:.2f} ms{}, reference turn ({:+.3f}, {:+.3f}, {:+.3f})° ({:.3f}°){}\n", folder,
+                                 fit.depth_latency_s * 1e3, options.fit_latency ? " (fitted)" : "", turn.x(), turn.y(), turn.z(),
+                                 turn.norm(), options.fit_reference_turn ? " (fitted)" : "");
+        // The residuals below: "without" at the given latency and turn with no field; "with" at the fitted values.
+        synth::DistortionFitOptions fitted = options;
+        fitted.depth_latency_s = fit.depth_latency_s;
+        fitted.reference_turn_rad = fit.reference_turn_rad;
         // Each gap's residual without and with the field, printed; returns the last gap's pair.
         const auto report = [&](const std::string& name, const synth::DepthSequence& s, std::initializer_list<int> gaps) {
             std::pair<double, double> last{0, 0};
             for (const int gap : gaps) {
                 std::size_t n = 0;
                 last.first = synth::corrected_residual_pct(s, rays, gap, {0, 0, 0}, options, n);
-                last.second = synth::corrected_residual_pct(s, rays, gap, d, options, n);
-                std::cout << fmt::format("{}: gap {:2d} ({} pairs): residual {:.3f} % -> {:.3f} % with the field\n", name, gap, n,
-                                         last.first, last.second);
+                last.second = synth::corrected_residual_pct(s, rays, gap, d, fitted, n);
+                std::cout << fmt::format("{}: gap {:2d} ({} pairs): residual {:.3f} % -> {:.3f} % with the fit\n", name, gap, n, last.first,
+                                         last.second);
             }
             return last;
         };

@@ -66,17 +66,26 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
     if (name == "tum-fr1") {
         // TUM fr1's Kinect: its depth's disparity offset field, measured from the real fr1/rpy frames
         // and their reference alone (`vobench synth fit-distortion`: depth images on the stream's clock,
-        // latency 18.9 ms). Renderings made with that field read back b 0.97 and c −1.16 to −1.39 (the
-        // fit absorbs the IR readout's row effect into c and loses a tenth of b to the noise), so the
-        // renderer applies the field that reads back as the real one: the measured field plus the
-        // difference between it and what the renderings gave — the mean over the ten offices of
-        // sim_to_real.sh, in this camera's offices (the read-back depends on the office: in those of
-        // generator version 5, b read back 0.03 lower); read back there: mean −0.389, 1.065, −0.970, ranges
-        // a −0.43…−0.35, b 1.049–1.084, c −1.38…−0.60 (the row term spreads most from office to
-        // office; docs/synthetic-sensors.md).
+        // latency 18.9 ms). Renderings read a field back differently from how it was applied (the fit
+        // absorbs the IR readout's row effect and part of the reference's turn below into c, and loses a
+        // little of b to the noise), so the renderer applies the field that reads back as the real one:
+        // the applied field corrected by the difference between the real fit and the mean read-back over
+        // the ten offices of sim_to_real.sh (generator 10, with the reference's turn): read back there,
+        // mean −0.390, 1.065, −0.966, ranges a −0.43…−0.35, b 1.053–1.077, c −1.35…−0.63 (the row term
+        // spreads most from office to office; docs/synthetic-sensors.md).
         CameraSpec fr1 = tum_camera(tum::kFr1);
         fr1.disparity_distortion_fit_px = {-0.389, 1.065, -0.969};
-        fr1.disparity_distortion_px = {-0.356, 1.126, -0.748};
+        fr1.disparity_distortion_px = {-0.314, 1.135, -1.075};
+        // Its reference's turn (effect reference_frame_error, reference_frame_error.hpp), measured from the
+        // same depth and reference alone: `synth fit-distortion --fit-latency --fit-turn` on the real
+        // fr1/rpy sample gives (+0.52, −0.12, −0.16)°, latency 21.2 ms. The fit reads a turn about x back
+        // at about two thirds of its size beside an offset of its own (renderings of the ten offices, mean
+        // and standard deviation: −0.18 ± 0.05° unturned, +0.32 ± 0.05° at 0.75°, +0.81 ± 0.08° at 1.5°),
+        // so the turn that reads back the real +0.52° is 1.05° about x (generator 10 reads back +0.43…+0.61°,
+        // mean +0.53°). About y the renderings read back −0.25…−1.47° whatever turn about x they carry,
+        // and about z +0.03…+0.24° against the real −0.16°: how much of a turn about y or z the fit sees
+        // was not measured, so none is applied there.
+        fr1.reference_turn_deg = {1.05, 0, 0};
         // Recorded in TUM's lab, a hall: fr1/rpy's farthest depth is 4.7 m (mean over frames), 12 % of
         // its depth beyond 3 m. Offices of at least 6 m give 2.8–4.7 m and 3–10 %, of at least 9 m
         // 3.7–5.4 m and 8–26 % (`synth stats`, five renderings of fr1/rpy's poses).
@@ -95,6 +104,7 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
 
 SensorModel with_color_camera(SensorModel s, const CameraSpec& camera) {
     s.color = camera.color;
+    s.reference_turn_deg = camera.reference_turn_deg;  // a property of the camera's reference, not of its depth principle
     if (s.principle == DepthPrinciple::StructuredLight) {
         const double k = camera.depth_divisor;
         const PinholeCamera& c = camera.color;

@@ -29,6 +29,11 @@ struct CameraSpec {
     // What `synth fit-distortion` measures on the camera's real frames (a, b, c px): the field as that fit
     // sees it, the IR camera's rolling shutter in its row term. `synth undo-distortion` undoes this one.
     std::array<double, 3> disparity_distortion_fit_px{};
+    // The turn between the frame the camera's real reference describes and its optical frame, as the
+    // renderer applies it (effect reference_frame_error; a rotation vector in camera axes, degrees; zero
+    // where none was measured) — chosen so that renderings fitted by `synth fit-distortion --fit-latency
+    // --fit-turn` read back what the camera's real frames give.
+    std::array<double, 3> reference_turn_deg{};
     // Where the camera's real frames were recorded, as far as the office around a trajectory should
     // follow it: the room is at least this wide and long, metres (0: OfficeOptions' default).
     double min_room_m = 0;

@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -25,24 +26,44 @@ constexpr double kFloor = 0.005;            // IRLS weight 1 / max(|r|, this): a
 constexpr double kStep = 1e-3;              // forward-difference step, px
 constexpr std::size_t kMinResiduals = 600;  // below this, three coefficients are not pinned down
 
-struct Pair {
-    std::size_t i, j;
-    Eigen::Isometry3d j_from_i;
+constexpr double kLatencyRangeS = 0.05;  // a free latency stays within this of its start
+constexpr double kLatencyStepS = 5e-4;   // forward-difference steps of the latency, s …
+constexpr double kTurnStepRad = 1e-4;    // … and of the turn, rad
+
+// The reference's side of the model: the latency of the depth stamps and the turn of its frame.
+struct ReferenceModel {
+    double latency_s = 0;
+    Eigen::Vector3d turn_rad = Eigen::Vector3d::Zero();
 };
 
-// Pairs (i, i + gap) whose depth stamps, less the latency, the reference covers.
-std::vector<Pair> covered_pairs(const DepthSequence& s, const std::vector<int>& gaps, std::size_t step, double latency_s) {
+struct Pair {
+    std::size_t i, j;
+};
+
+// Pairs (i, i + gap) whose depth stamps, less any latency within ±`margin_s` of `latency_s`, the reference covers.
+std::vector<Pair> covered_pairs(const DepthSequence& s, const std::vector<int>& gaps, std::size_t step, double latency_s, double margin_s) {
+    const auto covered = [&](double stamp) {
+        Eigen::Isometry3d pose;
+        return interpolate_pose(s.reference, stamp - latency_s - margin_s, pose) &&
+               interpolate_pose(s.reference, stamp - latency_s + margin_s, pose);
+    };
     std::vector<Pair> out;
     for (const int gap : gaps)
         for (std::size_t i = 0; i + static_cast<std::size_t>(gap) < s.stamps.size(); i += step) {
             const std::size_t j = i + static_cast<std::size_t>(gap);
-            Eigen::Isometry3d pose_i, pose_j;
-            if (!interpolate_pose(s.reference, s.stamps[i] - latency_s, pose_i) ||
-                !interpolate_pose(s.reference, s.stamps[j] - latency_s, pose_j))
-                continue;
-            out.push_back({i, j, pose_j.inverse() * pose_i});
+            if (covered(s.stamps[i]) && covered(s.stamps[j])) out.push_back({i, j});
         }
     return out;
+}
+
+// The camera's motion from frame i to frame j under the model: X·(G_j⁻¹·G_i)·X⁻¹, G at the stamps less the latency.
+Eigen::Isometry3d camera_j_from_i(const DepthSequence& s, const Pair& p, const ReferenceModel& model) {
+    Eigen::Isometry3d pose_i, pose_j;
+    interpolate_pose(s.reference, s.stamps[p.i] - model.latency_s, pose_i);  // covered_pairs checked both
+    interpolate_pose(s.reference, s.stamps[p.j] - model.latency_s, pose_j);
+    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
+    if (model.turn_rad.norm() > 0) turn.linear() = Eigen::AngleAxisd(model.turn_rad.norm(), model.turn_rad.normalized()).toRotationMatrix();
+    return turn * pose_j.inverse() * pose_i * turn.inverse();
 }
 
 std::vector<cv::Mat> corrected_images(const DepthSequence& s, const PinholeCamera& camera, const DisparityOffset& delta,
@@ -53,18 +74,25 @@ std::vector<cv::Mat> corrected_images(const DepthSequence& s, const PinholeCamer
     return out;
 }
 
-// Every pair's residuals, concatenated in pair order (the same slots for every offset).
+// Every pair's residuals, concatenated in pair order (the same slots for every offset and model).
 std::vector<double> all_residuals(const DepthSequence& s, const DepthRays& rays, const std::vector<Pair>& pairs,
-                                  const DisparityOffset& delta, double focal_baseline) {
-    const std::vector<cv::Mat> images = corrected_images(s, rays.camera(), delta, focal_baseline);
+                                  const std::vector<cv::Mat>& images, const ReferenceModel& model) {
     std::vector<std::vector<double>> per_pair(pairs.size());
     tbb::parallel_for(std::size_t{0}, pairs.size(), [&](std::size_t p) {
-        per_pair[p] = depth_pair_residuals(images[pairs[p].i], images[pairs[p].j], pairs[p].j_from_i, rays, kStridePx).relative;
+        per_pair[p] =
+            depth_pair_residuals(images[pairs[p].i], images[pairs[p].j], camera_j_from_i(s, pairs[p], model), rays, kStridePx).relative;
     });
     std::vector<double> out;
     for (const auto& r : per_pair) out.insert(out.end(), r.begin(), r.end());
     return out;
 }
+
+// The parameters in one vector: a, b, c (px), the latency (s), the turn (rad); `free` says which move.
+using Parameters = Eigen::Matrix<double, 7, 1>;
+constexpr double kParameterStep[7] = {kStep, kStep, kStep, kLatencyStepS, kTurnStepRad, kTurnStepRad, kTurnStepRad};
+
+DisparityOffset offset_of(const Parameters& p) { return {p[0], p[1], p[2]}; }
+ReferenceModel model_of(const Parameters& p) { return {p[3], p.segment<3>(4)}; }
 
 // A list's entries, each checked to name a file inside the folder (the copy writes to the same relative path).
 std::vector<tum::ListEntry> contained_list(const std::filesystem::path& list_file) {
@@ -111,29 +139,42 @@ cv::Mat undo_disparity_offset(const cv::Mat& depth_m, const PinholeCamera& camer
 }
 
 DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const DepthRays& rays, const DistortionFitOptions& options) {
-    const std::vector<Pair> pairs =
-        covered_pairs(sequence, std::vector<int>(std::begin(kFitGaps), std::end(kFitGaps)), 2, options.depth_latency_s);
+    const double start_latency = options.depth_latency_s;
+    if (!std::isfinite(start_latency) || !options.reference_turn_rad.allFinite())
+        throw std::runtime_error("fit-distortion: the depth latency and the reference's turn must be finite numbers");
+    const std::vector<Pair> pairs = covered_pairs(sequence, std::vector<int>(std::begin(kFitGaps), std::end(kFitGaps)), 2, start_latency,
+                                                  options.fit_latency ? kLatencyRangeS : 0.0);
     if (pairs.empty()) throw std::runtime_error("fit-distortion: the reference covers no pair of depth frames 4 or 16 apart");
+    std::vector<int> free = {0, 1, 2};
+    if (options.fit_latency) free.push_back(3);
+    if (options.fit_reference_turn) free.insert(free.end(), {4, 5, 6});
+    const auto n = static_cast<Eigen::Index>(free.size());
+    Parameters p;
+    p << 0, 0, 0, start_latency, options.reference_turn_rad;
     DistortionFit fit;
     fit.pairs = pairs.size();
-    Eigen::Vector3d delta = Eigen::Vector3d::Zero();
-    const auto as_offset = [](const Eigen::Vector3d& d) { return DisparityOffset{d[0], d[1], d[2]}; };
     for (int it = 0; it < options.iterations; ++it) {
-        const std::vector<double> r0 = all_residuals(sequence, rays, pairs, as_offset(delta), options.focal_baseline_px_m);
-        std::array<std::vector<double>, 3> moved;
-        for (int c = 0; c < 3; ++c)
-            moved[static_cast<std::size_t>(c)] =
-                all_residuals(sequence, rays, pairs, as_offset(delta + kStep * Eigen::Vector3d::Unit(c)), options.focal_baseline_px_m);
-        Eigen::Matrix3d normal = Eigen::Matrix3d::Zero();
-        Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+        const std::vector<cv::Mat> images = corrected_images(sequence, rays.camera(), offset_of(p), options.focal_baseline_px_m);
+        const std::vector<double> r0 = all_residuals(sequence, rays, pairs, images, model_of(p));
+        std::vector<std::vector<double>> moved;
+        for (const int c : free) {
+            Parameters q = p;
+            q[c] += kParameterStep[c];
+            // Only the field changes the images; the latency and the turn change the motions alone.
+            moved.push_back(c < 3 ? all_residuals(sequence, rays, pairs,
+                                                  corrected_images(sequence, rays.camera(), offset_of(q), options.focal_baseline_px_m),
+                                                  model_of(q))
+                                  : all_residuals(sequence, rays, pairs, images, model_of(q)));
+        }
+        Eigen::MatrixXd normal = Eigen::MatrixXd::Zero(n, n);
+        Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n), J(n);
         std::size_t used = 0;
         for (std::size_t k = 0; k < r0.size(); ++k) {
             const double r = r0[k];
             if (!std::isfinite(r) || std::abs(r) > kOcclusionResidual) continue;
-            Eigen::Vector3d J;
             bool finite = true;
-            for (int c = 0; c < 3; ++c) {
-                J[c] = (moved[static_cast<std::size_t>(c)][k] - r) / kStep;
+            for (Eigen::Index c = 0; c < n; ++c) {
+                J[c] = (moved[static_cast<std::size_t>(c)][k] - r) / kParameterStep[free[static_cast<std::size_t>(c)]];
                 finite = finite && std::isfinite(J[c]);
             }
             if (!finite) continue;
@@ -142,23 +183,30 @@ DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const Dept
             rhs += w * J * r;
             ++used;
         }
-        const Eigen::FullPivLU<Eigen::Matrix3d> lu(normal);
+        const Eigen::FullPivLU<Eigen::MatrixXd> lu(normal);
         if (used < kMinResiduals || !lu.isInvertible())
-            throw std::runtime_error("fit-distortion: too few depth residuals (" + std::to_string(used) + ") to fit three coefficients");
-        delta -= lu.solve(rhs);
+            throw std::runtime_error("fit-distortion: too few depth residuals (" + std::to_string(used) + ") to fit " + std::to_string(n) +
+                                     " parameters");
+        const Eigen::VectorXd step = lu.solve(rhs);
+        for (Eigen::Index c = 0; c < n; ++c) p[free[static_cast<std::size_t>(c)]] -= step[c];
+        p[3] = std::clamp(p[3], start_latency - kLatencyRangeS, start_latency + kLatencyRangeS);
         fit.residuals = used;
     }
-    fit.delta = as_offset(delta);
+    fit.delta = offset_of(p);
+    fit.depth_latency_s = p[3];
+    fit.reference_turn_rad = p.segment<3>(4);
     return fit;
 }
 
 double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& rays, int gap, const DisparityOffset& delta,
                               const DistortionFitOptions& options, std::size_t& pairs) {
-    const std::vector<Pair> chosen = covered_pairs(sequence, {gap}, 1, options.depth_latency_s);
+    const std::vector<Pair> chosen = covered_pairs(sequence, {gap}, 1, options.depth_latency_s, 0.0);
     const std::vector<cv::Mat> images = corrected_images(sequence, rays.camera(), delta, options.focal_baseline_px_m);
+    const ReferenceModel model{options.depth_latency_s, options.reference_turn_rad};
     std::vector<double> per_pair(chosen.size(), std::numeric_limits<double>::quiet_NaN());
     tbb::parallel_for(std::size_t{0}, chosen.size(), [&](std::size_t p) {
-        per_pair[p] = depth_pair_residual(images[chosen[p].i], images[chosen[p].j], chosen[p].j_from_i, rays, kStridePx);
+        per_pair[p] =
+            depth_pair_residual(images[chosen[p].i], images[chosen[p].j], camera_j_from_i(sequence, chosen[p], model), rays, kStridePx);
     });
     std::vector<double> finite;
     for (const double r : per_pair)

@@ -12,12 +12,15 @@
 // frame j's corrected depth
 // (depth_pair_residuals, every 8th pixel), for pairs 4 and 16 frames apart starting at every second
 // frame; Gauss–Newton on (a, b, c) from zero with a forward-difference Jacobian, robust by iterative
-// reweighting (weights 1 / max(|r|, 0.5 %), residuals over 5 % dropped as occlusions).
+// reweighting (weights 1 / max(|r|, 0.5 %), residuals over 5 % dropped as occlusions). Optionally the
+// latency and the turn of the frame the reference describes are fitted with the field (the joint fit).
 #pragma once
 
 #include "metrics/pose.hpp"
 #include "synth/depth_geometry.hpp"
 #include "synth/sensor_model.hpp"
+
+#include <Eigen/Core>
 
 #include <array>
 #include <filesystem>
@@ -46,22 +49,35 @@ cv::Mat undo_disparity_offset(const cv::Mat& depth_m, const PinholeCamera& camer
 
 struct DistortionFitOptions {
     double depth_latency_s = kinect1().depth_latency_s;  // the depth stream's latency (synth stats --camera measures it)
-    double focal_baseline_px_m = 580 * 0.075;            // IR focal length × baseline (Khoshelham & Elberink 2012)
+    // The frame the reference describes, in camera coordinates (a rotation vector, rad; reference_frame_error.hpp):
+    // the camera's relative motion is X·(G_j⁻¹·G_i)·X⁻¹ for reference poses G and this turn X.
+    Eigen::Vector3d reference_turn_rad = Eigen::Vector3d::Zero();
+    double focal_baseline_px_m = 580 * 0.075;  // IR focal length × baseline (Khoshelham & Elberink 2012)
     int iterations = 14;
+    // The joint fit: besides the field, the latency and/or the reference's turn are free (from the values
+    // above). Why: a latency, a linear disparity field and a turn about the image's x axis all tilt the
+    // residual the same way over a few frames, so fitting one with the others held can credit it with
+    // theirs (docs/synthetic-sensors.md, "The reference's frame").
+    bool fit_latency = false;
+    bool fit_reference_turn = false;
 };
 
 struct DistortionFit {
     DisparityOffset delta{0, 0, 0};
-    std::size_t pairs = 0;      // frame pairs the reference covers
-    std::size_t residuals = 0;  // residuals in the last iteration's solve
+    double depth_latency_s = 0;                                    // fitted, or the option's when held
+    Eigen::Vector3d reference_turn_rad = Eigen::Vector3d::Zero();  // fitted, or the option's when held
+    std::size_t pairs = 0;                                         // frame pairs the reference covers
+    std::size_t residuals = 0;                                     // residuals in the last iteration's solve
 };
 
 // Throws std::runtime_error when no pair the reference covers overlaps, or the normal equations are
-// singular (too few residuals to pin three coefficients down).
+// singular (too few residuals to pin the free parameters down), or the options' latency or turn is
+// not finite. A free latency stays within ±50 ms of
+// its start (the pairs are those the reference covers over that whole range).
 DistortionFit fit_disparity_distortion(const DepthSequence& sequence, const DepthRays& rays, const DistortionFitOptions& options);
 
 // Median over pairs (k, k + gap), every k, of depth_pair_residual with the offset undone, in per cent
-// of z (NaN: no pair); `pairs` gets how many counted.
+// of z (NaN: no pair), at the options' latency and reference turn; `pairs` gets how many counted.
 double corrected_residual_pct(const DepthSequence& sequence, const DepthRays& rays, int gap, const DisparityOffset& delta,
                               const DistortionFitOptions& options, std::size_t& pairs);
 

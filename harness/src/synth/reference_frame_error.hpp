@@ -3,32 +3,28 @@
 //
 // A motion-capture reference tracks markers on the camera's housing; a hand–eye calibration carries
 // their poses to the optical centre, and the camera's own calibration places the optical axis. Both
-// err by a fixed rotation, so every relative rotation of the reference is the camera's conjugated by it:
-// a rotation Θ over a segment is reported off by about 2·sin(Θ/2)·|X| about an axis turned by Θ — an error
-// that grows with the motion, the same in every segment, and that no algorithm can remove.
+// err by a fixed rotation X, so every relative rotation of the reference is the camera's conjugated by
+// it: a rotation Θ over a segment is reported off by about 2·sin(Θ/2)·|X| about an axis turned by Θ —
+// an error that grows with the motion, the same in every segment, and that no algorithm can remove.
+// A rendering's reference is exact unless this effect turns it.
 //
-// Off by default, because its size is read off the algorithms' results: on TUM's fr1/rpy sample one
-// constant turn of 1.25–1.75° about the image's x axis explains a large share of every image-based
-// algorithm's 1-s rotational error (55 % of put_vo's; 1–9 % on exact-reference renderings). The depth
-// does not settle it: its residual under the reference's motion at the recorded stamps is least with
-// the reference turned 1.5° about x, but at the camera clock's ticks less the measured latency, with
-// the disparity field refitted, it is least unturned (docs/synthetic-sensors.md, "The reference's
-// frame"). With `+reference_frame_error` the poses written to groundtruth.txt are the rendered
-// camera's turned by that angle about an axis drawn from the seed (an unseen sequence's axis is not
-// known), so what such an error costs each algorithm can be measured.
+// The turn is the camera's (CameraSpec::reference_turn_deg), measured on its real frames' depth and
+// reference alone: `vobench synth fit-distortion --fit-latency --fit-turn` fits the disparity field, the
+// depth latency and the turn together, and the turn the renderer applies is the one whose renderings
+// read back what the real frames give (docs/synthetic-sensors.md, "The reference's frame"). Cameras
+// with none measured get none.
 #pragma once
 
 #include "metrics/pose.hpp"
 
 #include <Eigen/Geometry>
 
-#include <cstdint>
+#include <array>
 
 namespace vobench::synth {
 
-// The turn of the seed's reference: `angle_rad` about an axis uniform on the sphere (its own hash
-// stream, so no other random number of the rendering moves). Identity for an angle of 0.
-Eigen::Quaterniond reference_frame_error(uint64_t seed, double angle_rad);
+// The rotation of rotation vector `rotation_vector_deg` (camera axes, degrees); identity for zero.
+Eigen::Quaterniond reference_turn(const std::array<double, 3>& rotation_vector_deg);
 
 // Every pose's orientation right-multiplied by `turn` (the frame the reference describes, in camera
 // coordinates); positions unchanged: the turn is about the optical centre.

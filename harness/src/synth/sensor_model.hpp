@@ -57,9 +57,9 @@ struct Effects {
     // Trajectory files: the camera moves along the file's smoothed path, the file (with its motion
     // capture's noise) stays the reference (measured_path.hpp).
     bool measured_reference = true;
-    // TUM-format camera trajectory files (off by default): the reference written describes a frame
-    // turned from the rendered camera's by SensorModel::reference_frame_error_deg (reference_frame_error.hpp).
-    bool reference_frame_error = false;
+    // TUM-format camera trajectory files: the reference written describes a frame turned from the
+    // rendered camera's by the camera's measured SensorModel::reference_turn_deg (reference_frame_error.hpp).
+    bool reference_frame_error = true;
 };
 
 // Parses "all", "none", or a comma list of [+|-]name applied to the defaults (e.g. "-motion_blur" or
@@ -138,10 +138,10 @@ struct SensorModel {
     // Effect stamp_latency (with real stamps, `--stamps`): how long before its recorded stamp each
     // stream's image is exposed (its middle row). Recorded stamps are when the driver received an image.
     double color_latency_s = 0.0, depth_latency_s = 0.0;
-    // The turn between the frame a TUM reference describes and the optical frame (effect
-    // +reference_frame_error): read off the algorithms' results on fr1/rpy, which is why the effect is
-    // off by default (reference_frame_error.hpp). A property of the reference: the same for both sensors.
-    double reference_frame_error_deg = 1.5;
+    // The turn between the frame the camera's real reference describes and its optical frame (effect
+    // reference_frame_error), a rotation vector in camera axes, degrees: the colour camera's
+    // (CameraSpec::reference_turn_deg, set by with_color_camera; zero where none was measured).
+    std::array<double, 3> reference_turn_deg{};
     Effects effects;
 };
 

@@ -329,14 +329,15 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         for (const auto& p : paths.camera)
             if (p.t >= plan.front().color_stamp - 0.05 && p.t <= plan.back().color_stamp + 0.05) gt.push_back(p);
     }
-    // +reference_frame_error (off by default): a reference describing a frame a little turned from the
-    // optical one (reference_frame_error.hpp), for camera-pose files as TUM's; PUT's marker files carry
-    // their own camera-in-marker calibration, not looked at here. (icl-povray writes its camera files as it renders.)
-    const bool turn_reference =
-        sensor.effects.reference_frame_error && paths.marker.empty() && !is_trajectory_family(o.trajectory) && !povray;
-    const double turn_rad = turn_reference ? sensor.reference_frame_error_deg * M_PI / 180.0 : 0.0;
-    const Eigen::Quaterniond turn = reference_frame_error(o.seed, turn_rad);
-    if (turn_reference) turn_reference_frame(gt, turn);  // off: the poses as they were, to the last bit
+    // Effect reference_frame_error: a reference describing a frame a little turned from the optical one,
+    // by the camera's measured turn (reference_frame_error.hpp), for camera-pose files as TUM's; PUT's
+    // marker files carry their own camera-in-marker calibration, not looked at here. (icl-povray writes
+    // its camera files as it renders.)
+    const std::array<double, 3> no_turn{};
+    const bool turn_reference = sensor.effects.reference_frame_error && sensor.reference_turn_deg != no_turn && paths.marker.empty() &&
+                                !is_trajectory_family(o.trajectory) && !povray;
+    const std::array<double, 3> turn_deg = turn_reference ? sensor.reference_turn_deg : no_turn;
+    if (turn_reference) turn_reference_frame(gt, reference_turn(turn_deg));  // none: the poses as they were, to the last bit
     if (!povray) {
         metrics::write_tum(o.out / (icl ? "synth.gt.freiburg" : "groundtruth.txt"), gt,
                            putk2 || icl ? "vobench synth: camera poses (camera-to-world), stamps are frame indices (10 Hz)"
@@ -388,9 +389,7 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
         {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},
         {"room_boxes", scene.boxes.size()},
-        {"reference_frame_error",
-         {{"angle_deg", turn_rad * 180.0 / M_PI},
-          {"axis", as_list(turn_rad > 0 ? Eigen::Vector3d(Eigen::AngleAxisd(turn).axis()) : Eigen::Vector3d::Zero())}}},
+        {"reference_turn_deg", turn_deg},  // as written to groundtruth.txt (rotation vector, camera axes)
         {"measured_reference",
          {{"bandwidth_s", measured.bandwidth_s},
           {"noise_rotation_deg", as_list(measured.noise.rotation_rad * (180.0 / M_PI))},

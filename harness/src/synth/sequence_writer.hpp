@@ -40,8 +40,10 @@ namespace vobench::synth {
 //    fr1/rpy's brightness changes; SensorModel::exposure_time_constant_s).
 // 9: Kinect v1's colour noise gains a smooth part (effect smooth_noise: 2.0 DN blurred to 1 px),
 //    measured on fr1/rpy's flat-pixel noise; Kinect v2 renders as in 8.
-//    (+reference_frame_error, off by default, changes only groundtruth.txt and synth.json.)
-constexpr int kGeneratorVersion = 9;
+// 10: tum-fr1: the reference written is turned by the camera's measured turn (effect
+//    reference_frame_error, on by default; images unchanged), and the disparity field applied is
+//    recalibrated so that renderings with that reference read back the real field. Other cameras as in 9.
+constexpr int kGeneratorVersion = 10;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
