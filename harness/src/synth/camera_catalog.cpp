@@ -82,9 +82,10 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
         // at about two thirds of its size beside an offset of its own (renderings of the ten offices, mean
         // and standard deviation: −0.18 ± 0.05° unturned, +0.32 ± 0.05° at 0.75°, +0.81 ± 0.08° at 1.5°),
         // so the turn that reads back the real +0.52° is 1.05° about x (generator 10 reads back +0.43…+0.61°,
-        // mean +0.53°). About y the renderings read back −0.25…−1.47° whatever turn about x they carry,
-        // and about z +0.03…+0.24° against the real −0.16°: how much of a turn about y or z the fit sees
-        // was not measured, so none is applied there.
+        // mean +0.53°). About y the offices' own read-back spreads too far (sd 0.4°) for the real −0.12° to
+        // ask for a turn; about z it asks for −0.36°, but the depth cannot tell that from a roll of the
+        // registered depth against the colour camera (about x it can: a 1° turn of the depth would move its
+        // edges 9 px against the colour's, and the real offset is 2 px) — docs/synthetic-sensors.md.
         fr1.reference_turn_deg = {1.05, 0, 0};
         // Recorded in TUM's lab, a hall: fr1/rpy's farthest depth is 4.7 m (mean over frames), 12 % of
         // its depth beyond 3 m. Offices of at least 6 m give 2.8–4.7 m and 3–10 %, of at least 9 m
