@@ -8,6 +8,7 @@
 #include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
 #include "synth/stamp_latency.hpp"
+#include "synth/texture_edge_depth_noise.hpp"
 #include "synth/track_precision.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
@@ -92,40 +93,16 @@ private:
     std::vector<std::string> order_;
 };
 
-// Plane fits z = a·u + b·v + c (centred pixel coordinates) in complete patch×patch squares; the RMS
-// residual of those that are planar (under 2 % of their range) by range band.
+// Plane fits (fit_patch_plane) in complete patch×patch squares; the RMS residual of those that are
+// planar (under 2 % of their range) by range band.
 void plane_fit_noise(const cv::Mat& depth_m, int patch, const std::string& key, const std::string& label, Accumulator& acc) {
-    const int H = depth_m.rows, W = depth_m.cols;
-    double suu = 0;
-    for (int i = 0; i < patch; ++i) suu += (i - (patch - 1) / 2.0) * (i - (patch - 1) / 2.0);
-    suu *= patch;
-    for (int y = 0; y + patch <= H; y += patch)
-        for (int x = 0; x + patch <= W; x += patch) {
-            double sz = 0, suz = 0, svz = 0;
-            bool complete = true;
-            for (int j = 0; j < patch && complete; ++j)
-                for (int i = 0; i < patch; ++i) {
-                    const float z = depth_m.at<float>(y + j, x + i);
-                    if (z <= 0) {
-                        complete = false;
-                        break;
-                    }
-                    sz += z;
-                    suz += (i - (patch - 1) / 2.0) * z;
-                    svz += (j - (patch - 1) / 2.0) * z;
-                }
-            if (!complete) continue;
-            const double c = sz / (patch * patch), a = suz / suu, b = svz / suu;
-            double ss = 0;
-            for (int j = 0; j < patch; ++j)
-                for (int i = 0; i < patch; ++i) {
-                    const double r = depth_m.at<float>(y + j, x + i) - (c + a * (i - (patch - 1) / 2.0) + b * (j - (patch - 1) / 2.0));
-                    ss += r * r;
-                }
-            const double rms = std::sqrt(ss / (patch * patch - 3));
-            if (rms > 0.02 * c) continue;  // not planar: an edge or clutter
+    for (int y = 0; y + patch <= depth_m.rows; y += patch)
+        for (int x = 0; x + patch <= depth_m.cols; x += patch) {
+            const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, patch);
+            if (!plane || plane->rms > 0.02 * plane->c) continue;  // incomplete, or not planar: an edge or clutter
             for (const Band& band : kRangeBands)
-                if (c >= band.lo && c < band.hi) acc.sample(key + band.name, fmt::format("{}, {}, mm", label, band.name), rms * 1e3);
+                if (plane->c >= band.lo && plane->c < band.hi)
+                    acc.sample(key + band.name, fmt::format("{}, {}, mm", label, band.name), plane->rms * 1e3);
         }
 }
 
@@ -180,6 +157,9 @@ void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc
     // across the image (it bends a fitted plane within 8 px only a little, but not within 32).
     plane_fit_noise(depth_m, 8, "depth_noise_mm.", "depth noise (plane fit RMS)", acc);
     plane_fit_noise(depth_m, 32, "depth_noise_32px_mm.", "depth noise (plane fit RMS, 32×32 patches)", acc);
+    if (const auto ratio = texture_edge_depth_noise_ratio(depth_m, grey))
+        acc.sample("depth_noise.texture_edge_ratio", "depth noise on planes at grey-level edges ÷ away from them (median over frames)",
+                   *ratio);
 }
 
 // The noise where the image is flat (smoothed gradient under 4 grey levels, grey 15–240): the mean square of
