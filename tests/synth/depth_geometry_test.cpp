@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <limits>
+#include <random>
 
 using namespace vobench;
 namespace fs = std::filesystem;
@@ -36,12 +37,18 @@ struct Sequence {
     metrics::Trajectory exact;
 };
 
-Sequence write_room_sequence(const fs::path& dir, const synth::DepthRays& rays, int frames) {
+// With `far_noise`, every depth beyond 2 m carries independent Gaussian noise of that relative σ.
+Sequence write_room_sequence(const fs::path& dir, const synth::DepthRays& rays, int frames, double far_noise = 0) {
     fs::create_directories(dir);
     Sequence s;
+    std::mt19937 rng(11);
+    std::normal_distribution<double> noise(0.0, 1.0);
     for (int k = 0; k < frames; ++k) {
         const double t = 10.0 + k / 30.0;
-        const cv::Mat d = room_depth(rays, camera_pose(k));
+        cv::Mat d = room_depth(rays, camera_pose(k));
+        if (far_noise > 0)
+            for (auto it = d.begin<float>(); it != d.end<float>(); ++it)
+                if (*it > 2.0f) *it = static_cast<float>(*it * (1.0 + far_noise * noise(rng)));
         cv::Mat raw;
         d.convertTo(raw, CV_16U, 5000.0);
         const fs::path path = dir / (std::to_string(k) + ".png");
@@ -73,6 +80,12 @@ TEST_CASE("reference consistency: exact poses stay at the depth quantisation, a 
         CHECK(g.median_pct < 0.02);  // 0.2 mm steps of the 16-bit depth at 1.5-4 m, bilinear on planes
     }
     CHECK(exact[2].pairs == 24 - 16);
+    // By range, pooled over the points: the room lies 1.5–4 m away, nothing nearer than 1 m.
+    CHECK(std::isnan(exact[0].by_range_pct[0]));
+    for (std::size_t b = 1; b < 4; ++b) {
+        INFO("band " << b << ": " << exact[0].by_range_pct[b] << " %");
+        CHECK(exact[0].by_range_pct[b] < 0.02);
+    }
 
     // The same images against a reference whose camera is off by 3° and 2 cm (a hand-eye error):
     // the disagreement grows with the rotation between the two frames.
@@ -98,6 +111,19 @@ TEST_CASE("reference consistency: exact poses stay at the depth quantisation, a 
     for (auto& p : late) p.t += 100.0;
     CHECK(synth::reference_consistency(s.stamps, s.paths, late, rays, {1}, 0, 5000.0)[0].pairs == 0);
     CHECK(synth::reference_consistency(s.stamps, s.paths, s.exact, rays, {1}, 5, 5000.0)[0].pairs == 5);
+}
+
+TEST_CASE("reference consistency by range: noise on the far depth shows in the far bands alone", "[synth][stats][depth_geometry]") {
+    test::TempDir tmp;
+    const synth::DepthRays rays(test::small_distorted_camera());
+    const Sequence s = write_room_sequence(tmp.path(), rays, 24, 0.01);
+    const auto g = synth::reference_consistency(s.stamps, s.paths, s.exact, rays, {1}, 0, 5000.0)[0];
+    INFO("1-2 / 2-3 / 3+ m: " << g.by_range_pct[1] << " / " << g.by_range_pct[2] << " / " << g.by_range_pct[3] << " %");
+    // 1 % in frame i against frame j's bilinear average of four noisy neighbours: the median |r| is at
+    // least that of frame i's own noise, 0.674 %; a near point landing on far depth is rare.
+    CHECK(g.by_range_pct[1] < 0.05);
+    CHECK(g.by_range_pct[2] > 0.6);
+    CHECK(g.by_range_pct[3] > 0.6);
 }
 
 TEST_CASE("reference consistency: an undecodable depth image is an error naming it", "[synth][stats][depth_geometry]") {

@@ -184,6 +184,20 @@ std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& d
         return it->second;
     };
     std::vector<std::vector<double>> per_gap(gaps.size());
+    std::vector<std::array<std::vector<double>, 4>> per_gap_range(gaps.size());
+    // Each pair's |residuals| into the depth band of frame i's point (the sampling order of depth_pair_residuals).
+    const auto pool_by_range = [&](const cv::Mat& depth_i, const PairResiduals& pr, std::array<std::vector<double>, 4>& bands) {
+        std::size_t k = 0;
+        for (int v = 0; v < depth_i.rows; v += kStridePx)
+            for (int u = 0; u < depth_i.cols; u += kStridePx, ++k) {
+                const double r = std::abs(pr.relative[k]);
+                if (!(r < kOcclusionResidual)) continue;  // occlusions and NaN left out, as in median_pair_residual
+                const double z = depth_i.at<float>(v, u);
+                std::size_t band = 0;
+                while (band + 1 < bands.size() && z >= kConsistencyRangeEdges[band + 1]) ++band;
+                bands[band].push_back(r * 100.0);
+            }
+    };
     const std::size_t starts = max_pairs > 0 ? std::min(max_pairs, n) : n;
     for (std::size_t s = 0; s < starts; ++s) {
         const std::size_t i = starts == n ? s : s * n / starts;
@@ -194,12 +208,21 @@ std::vector<ConsistencyAtGap> reference_consistency(const std::vector<double>& d
             const std::size_t j = i + static_cast<std::size_t>(gaps[g]);
             Eigen::Isometry3d pose_j;
             if (gaps[g] <= 0 || j >= n || !interpolate_pose(reference, depth_stamps[j], pose_j)) continue;
-            const double r = depth_pair_residual(depth(i), depth(j), pose_j.inverse() * pose_i, rays, kStridePx);
-            if (std::isfinite(r)) per_gap[g].push_back(r * 100.0);
+            const PairResiduals pr = depth_pair_residuals(depth(i), depth(j), pose_j.inverse() * pose_i, rays, kStridePx);
+            const double r = median_pair_residual(pr);
+            if (!std::isfinite(r)) continue;
+            per_gap[g].push_back(r * 100.0);
+            pool_by_range(depth(i), pr, per_gap_range[g]);
         }
     }
     std::vector<ConsistencyAtGap> out;
-    for (std::size_t g = 0; g < gaps.size(); ++g) out.push_back({gaps[g], median_of(per_gap[g]), per_gap[g].size()});
+    for (std::size_t g = 0; g < gaps.size(); ++g) {
+        ConsistencyAtGap c{gaps[g], median_of(per_gap[g]), per_gap[g].size(), {}};
+        for (std::size_t b = 0; b < c.by_range_pct.size(); ++b)
+            c.by_range_pct[b] =
+                per_gap_range[g][b].size() >= kMinOverlap ? median_of(per_gap_range[g][b]) : std::numeric_limits<double>::quiet_NaN();
+        out.push_back(c);
+    }
     return out;
 }
 

@@ -25,6 +25,7 @@
 #include <Eigen/Core>
 #include <opencv2/core.hpp>
 
+#include <array>
 #include <filesystem>
 #include <vector>
 
@@ -94,10 +95,17 @@ double median_pair_residual(const PairResiduals& pair);
 double depth_pair_residual(const cv::Mat& depth_i, const cv::Mat& depth_j, const Eigen::Isometry3d& j_from_i, const DepthRays& rays,
                            int stride_px);
 
+// Depth bands of ConsistencyAtGap::by_range_pct: 0–1, 1–2, 2–3 and beyond 3 m.
+constexpr double kConsistencyRangeEdges[] = {0.0, 1.0, 2.0, 3.0};
+
 struct ConsistencyAtGap {
     int gap = 0;            // frames between the two depth images of a pair
     double median_pct = 0;  // median over pairs of the pair's median |relative residual|, per cent (NaN: no pair)
     std::size_t pairs = 0;  // pairs that had enough overlap (≥ 500 points)
+    // The same residuals pooled over those pairs' points, median |r| per cent by the depth of frame i's
+    // point (kConsistencyRangeEdges; NaN: under 500 points in the band). How much the depth of one surface
+    // point changes from frame to frame at each range — what feature-based odometry takes at its key points.
+    std::array<double, 4> by_range_pct{};
 };
 
 // For each gap, pairs (k, k + gap) of `depth_stamps`/`depth_paths` (sorted, consecutive frames of the
