@@ -4,6 +4,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_clock.hpp"
 #include "synth/frame_plan.hpp"
+#include "synth/rotation_vector.hpp"
 #include "tum_lists.hpp"  // plugins/common
 #include "util/files.hpp"
 
@@ -61,8 +62,7 @@ Eigen::Isometry3d camera_j_from_i(const DepthSequence& s, const Pair& p, const R
     Eigen::Isometry3d pose_i, pose_j;
     interpolate_pose(s.reference, s.stamps[p.i] - model.latency_s, pose_i);  // covered_pairs checked both
     interpolate_pose(s.reference, s.stamps[p.j] - model.latency_s, pose_j);
-    Eigen::Isometry3d turn = Eigen::Isometry3d::Identity();
-    if (model.turn_rad.norm() > 0) turn.linear() = Eigen::AngleAxisd(model.turn_rad.norm(), model.turn_rad.normalized()).toRotationMatrix();
+    const Eigen::Isometry3d turn(exp_rotation(model.turn_rad));
     return turn * pose_j.inverse() * pose_i * turn.inverse();
 }
 

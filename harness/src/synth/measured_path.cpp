@@ -1,4 +1,5 @@
 #include "synth/measured_path.hpp"
+#include "synth/rotation_vector.hpp"
 
 #include <Eigen/Geometry>
 
@@ -7,17 +8,6 @@
 
 namespace vobench::synth {
 namespace {
-
-Eigen::Vector3d log_rotation(const Eigen::Quaterniond& q) {
-    const Eigen::AngleAxisd aa(q.normalized());
-    return aa.axis() * aa.angle();
-}
-
-Eigen::Quaterniond exp_rotation(const Eigen::Vector3d& w) {
-    const double angle = w.norm();
-    if (angle < 1e-15) return Eigen::Quaterniond::Identity();
-    return Eigen::Quaterniond(Eigen::AngleAxisd(angle, w / angle));
-}
 
 double median_of(std::vector<double> v) {
     if (v.empty()) return 0;

@@ -1,13 +1,13 @@
 #include "synth/reference_frame_error.hpp"
 
+#include "synth/rotation_vector.hpp"
+
 #include <cmath>
 
 namespace vobench::synth {
 
 Eigen::Quaterniond reference_turn(const std::array<double, 3>& rotation_vector_deg) {
-    const Eigen::Vector3d w = Eigen::Vector3d(rotation_vector_deg[0], rotation_vector_deg[1], rotation_vector_deg[2]) * (M_PI / 180.0);
-    if (w.norm() == 0) return Eigen::Quaterniond::Identity();
-    return Eigen::Quaterniond(Eigen::AngleAxisd(w.norm(), w.normalized()));
+    return exp_rotation(Eigen::Vector3d(rotation_vector_deg[0], rotation_vector_deg[1], rotation_vector_deg[2]) * (M_PI / 180.0));
 }
 
 void turn_reference_frame(metrics::Trajectory& poses, const Eigen::Quaterniond& turn) {
