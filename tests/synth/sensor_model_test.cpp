@@ -69,15 +69,26 @@ Stats centre_stats(const cv::Mat& depth, double truth, int half) {
 
 }  // namespace
 
-TEST_CASE("Kinect v1 axial noise follows 1.425e-3 z² within 20% at 1, 2 and 3 m", "[synth][sensor]") {
+// The white part of the disparity error is Khoshelham & Elberink's fit (2012, eq. 16); the smooth
+// part (correlated_depth_noise, measured on TUM fr1/rpy) adds its own z²·σ_c/(f·b) in quadrature.
+TEST_CASE("Kinect v1 axial noise follows 1.425e-3 z², plus the smooth part in quadrature, within 20% at 1, 2 and 3 m", "[synth][sensor]") {
+    const SensorModel k1 = kinect1();
+    REQUIRE(k1.effects.correlated_depth_noise);
     for (double z : {1.0, 2.0, 3.0}) {
         TestRig rig(z);
-        const Renderer r(rig.scene, kinect1(), 7);
-        const Stats s = centre_stats(r.render(0, rig.pose, rig.pose, 0.1, false).depth_native, z, 40);
-        INFO("z = " << z << " m: measured σ " << s.std << ", model " << kinect1_sigma_z(z));
+        SensorModel white = kinect1();
+        white.effects.correlated_depth_noise = false;
+        const Stats w = centre_stats(Renderer(rig.scene, white, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native, z, 40);
+        const Stats s = centre_stats(Renderer(rig.scene, k1, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native, z, 40);
+        const double smooth = z * z * k1.disparity_correlated_sigma_px / (k1.ir_focal_px * k1.baseline_m);
+        const double expected = std::hypot(kinect1_sigma_z(z), smooth);
+        INFO("z = " << z << " m: white σ " << w.std << " (model " << kinect1_sigma_z(z) << "), default σ " << s.std << " (model "
+                    << expected << ")");
+        CHECK(w.valid > 0.95 * w.total);
         CHECK(s.valid > 0.95 * s.total);
-        CHECK(s.std == Approx(kinect1_sigma_z(z)).epsilon(0.2));
-        CHECK(std::abs(s.mean) < 0.3 * kinect1_sigma_z(z) + 0.002);
+        CHECK(w.std == Approx(kinect1_sigma_z(z)).epsilon(0.2));
+        CHECK(s.std == Approx(expected).epsilon(0.2));
+        CHECK(std::abs(s.mean) < 0.3 * expected + 0.002);
     }
 }
 
@@ -273,8 +284,8 @@ TEST_CASE("the smooth field has unit variance everywhere and is correlated over 
     CHECK(field.at(100.5, 200.25) == SmoothField(2048, 2048, spacing, 3).at(100.5, 200.25));  // deterministic in the seed
 }
 
-TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, off by default", "[synth][sensor]") {
-    CHECK(parse_effects("").correlated_depth_noise == false);
+TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, on by default", "[synth][sensor]") {
+    CHECK(parse_effects("").correlated_depth_noise == true);
     const double z = 2.0;
     TestRig rig(z);
     const auto depth = [&](const char* effects) {
@@ -282,7 +293,7 @@ TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, of
         sensor.effects = parse_effects(effects);
         return Renderer(rig.scene, sensor, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
     };
-    const cv::Mat plain = depth(""), smooth = depth("+correlated_depth_noise");
+    const cv::Mat plain = depth("-correlated_depth_noise"), smooth = depth("");
     // The depth error of a disparity error δd is z²·δd/(f·b): the added part's σ over the wall.
     const SensorModel k1 = kinect1();
     const double expected = z * z * k1.disparity_correlated_sigma_px / (k1.ir_focal_px * k1.baseline_m);

@@ -47,7 +47,10 @@ SensorModel kinect1() {
     s.tone_contrast = 1.5;  // with +tone_curve: measured, saturated share 8.4 % rendered vs 8.7 % real (fr1/rpy)
     s.optics_sigma_px = 0.6;
     s.lateral_sigma_px = 0.3;
-    s.disparity_correlated_sigma_px = 0.1;  // with +correlated_depth_noise (off by default; docs/synthetic-sensors.md)
+    // correlated_depth_noise: the σ that brings the one-frame depth residual of the rendered fr1/rpy
+    // poses up to the real one's in every range band (0–1 / 1–2 / 2–3 / 3+ m: 0.059 / 0.054 / 0.068 /
+    // 0.058 px; `synth stats --camera tum-fr1`, docs/synthetic-sensors.md), with the white σ above kept.
+    s.disparity_correlated_sigma_px = 0.06;
     s.disparity_correlation_px = 16;
     // Range: TUM's Kinect v1 depth reaches past 4.5 m and thins out there (fr1/rpy sample: 2.5 % of the
     // valid depth beyond 4 m, 32 % missing; `vobench synth stats`); Khoshelham & Elberink 2012 fit

@@ -40,20 +40,20 @@ struct Effects {
     bool highlights = true;       // specular reflection on glossy materials
     bool rolling_shutter = true;  // rows exposed one after another while the camera moves
     // Depth.
-    bool depth_noise = true;              // the sensor's axial and lateral noise (and Kinect v1's quantisation)
-    bool correlated_depth_noise = false;  // Kinect v1: disparity errors that are smooth across the image
-    bool projector_shadow = true;         // Kinect v1: no depth where the projector's pattern cannot reach
-    bool depth_border = true;             // Kinect v1: the registered depth image's unmeasured border
-    bool dark_dropout = true;             // lost returns on dark, glossy and glass surfaces
-    bool glancing_dropout = true;         // no return beyond the glancing-angle limit
-    bool far_dropout = true;              // Kinect v1: returns thin out with range before the limit
-    bool edge_dropout = true;             // Kinect v1: the correlation window fails across depth steps
-    bool flying_pixels = true;            // Kinect v2: mixed depths at discontinuities
-    bool registration_error = true;       // Kinect v1: depth registered a little off the colour image
-    bool stamp_offsets = false;           // built-in trajectories: depth stamps off the colour stamps
-    bool stamp_latency = true;            // --stamps: each image exposed its stream's latency before its recorded stamp
-    bool stamp_jitter = true;             // --stamps: exposed on the camera's regular clock, about which the recorded stamps jitter
-    bool depth_distortion = true;         // Kinect v1: the camera's measured disparity offset field (none: nothing to add)
+    bool depth_noise = true;             // the sensor's axial and lateral noise (and Kinect v1's quantisation)
+    bool correlated_depth_noise = true;  // Kinect v1: disparity errors that are smooth across the image
+    bool projector_shadow = true;        // Kinect v1: no depth where the projector's pattern cannot reach
+    bool depth_border = true;            // Kinect v1: the registered depth image's unmeasured border
+    bool dark_dropout = true;            // lost returns on dark, glossy and glass surfaces
+    bool glancing_dropout = true;        // no return beyond the glancing-angle limit
+    bool far_dropout = true;             // Kinect v1: returns thin out with range before the limit
+    bool edge_dropout = true;            // Kinect v1: the correlation window fails across depth steps
+    bool flying_pixels = true;           // Kinect v2: mixed depths at discontinuities
+    bool registration_error = true;      // Kinect v1: depth registered a little off the colour image
+    bool stamp_offsets = false;          // built-in trajectories: depth stamps off the colour stamps
+    bool stamp_latency = true;           // --stamps: each image exposed its stream's latency before its recorded stamp
+    bool stamp_jitter = true;            // --stamps: exposed on the camera's regular clock, about which the recorded stamps jitter
+    bool depth_distortion = true;        // Kinect v1: the camera's measured disparity offset field (none: nothing to add)
     // Trajectory files: the camera moves along the file's smoothed path, the file (with its motion
     // capture's noise) stays the reference (measured_path.hpp).
     bool measured_reference = true;
