@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 using namespace vobench::synth;
 
@@ -282,6 +283,18 @@ TEST_CASE("the smooth field has unit variance everywhere and is correlated over 
     CHECK(correlation(1) > 0.95);
     CHECK(std::abs(correlation(64)) < 0.1);
     CHECK(field.at(100.5, 200.25) == SmoothField(2048, 2048, spacing, 3).at(100.5, 200.25));  // deterministic in the seed
+}
+
+TEST_CASE("the smooth field's rows are its values at the integer pixels, bit for bit", "[synth][sensor]") {
+    // The renderer reads the field a row at a time; the rendered depth must not depend on that.
+    for (double spacing : {16.0, 8.0, 5.5}) {
+        const SmoothField field(317, 203, spacing, 11);
+        std::vector<double> row(317);
+        for (int y : {0, 1, 100, 202}) {
+            field.row(y, row.data());
+            for (int x = 0; x < 317; ++x) REQUIRE(row[static_cast<std::size_t>(x)] == field.at(x, y));
+        }
+    }
 }
 
 TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, on by default", "[synth][sensor]") {

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <vector>
 
 namespace vobench::synth {
 
@@ -140,6 +141,11 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
         bool found[RayIndex::kPacket];
+        std::vector<double> correlated_row;
+        if (correlated) {
+            correlated_row.resize(static_cast<std::size_t>(W));
+            correlated->row(v, correlated_row.data());
+        }
         for (int u = 0; u < W; ++u) {
             const int lane = u % RayIndex::kPacket;
             if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
@@ -166,7 +172,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             double d = fb / z + offset;
             if (fx.depth_noise) {
                 d += sensor_.disparity_sigma_px * gaussian(random.disparity(pixel));
-                if (correlated) d += correlated_sigma * correlated->at(u, v);
+                if (correlated) d += correlated_sigma * correlated_row[static_cast<std::size_t>(u)];
                 d = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
             }
             if (d <= 0) continue;
