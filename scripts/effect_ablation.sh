@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
-# effect_ablation.sh VOBENCH OUT [SENSORS] [TRAJECTORY] [FRAMES] [ALGORITHM] — what each effect of the
-# sensor models (docs/synthetic-sensors.md) costs an algorithm: renders the path with all effects,
-# then once with each effect off, runs the algorithm on each (vobench track, Kraft et al.'s RPE over 4
-# frames) and prints "effect → RPE change" per sensor as a Markdown table. Same seed throughout, so
-# the only difference between two rows is the effect.
-#   scripts/effect_ablation.sh build/bin/vobench /tmp/ablation "kinect1 kinect2" explore1 60 put_vo
+# effect_ablation.sh VOBENCH OUT [SENSORS] [TRAJECTORY] [FRAMES] [ALGORITHM] [SEEDS] — what each effect
+# of the sensor models (docs/synthetic-sensors.md) costs an algorithm: renders the path with all
+# effects, then once with each effect off, runs the algorithm on each (vobench track, Kraft et al.'s
+# RPE over 4 frames) and prints "effect → RPE change" per sensor as a Markdown table. For each render
+# seed the only difference between two rows is the effect; over 60 frames one seed's RPE moves by tens
+# of per cent with any change to the frames, so give several seeds (e.g. "1 2 3"): the table then
+# shows the median over seeds, and the change is the median of each seed's own change.
+#   scripts/effect_ablation.sh build/bin/vobench /tmp/ablation "kinect1 kinect2" explore1 60 put_vo "1 2 3"
 set -euo pipefail
 vobench=$1 out=$2 sensors=${3:-"kinect1 kinect2"} trajectory=${4:-explore1} frames=${5:-60} algorithm=${6:-put_vo}
-effects="motion_blur optics_blur image_noise vignetting auto_exposure highlights rolling_shutter depth_noise projector_shadow
-depth_border registration_error dark_dropout glancing_dropout far_dropout edge_dropout flying_pixels"
+seeds=${7:-1}
+effects="motion_blur optics_blur image_noise smooth_noise vignetting auto_exposure highlights rolling_shutter depth_noise
+correlated_depth_noise projector_shadow depth_border registration_error dark_dropout glancing_dropout far_dropout edge_dropout flying_pixels"
 mkdir -p "$out"
 metric() {  # folder → "ATE RPE_t RPE_r"
   "$vobench" track --dataset tum --path "$1" --algorithm "$algorithm" --json 2>/dev/null |
@@ -17,16 +20,23 @@ metric() {  # folder → "ATE RPE_t RPE_r"
 echo "| sensor | effect off | ATE [m] | RPE t [m] | RPE r [°] | RPE t change |"
 echo "|---|---|---:|---:|---:|---:|"
 for sensor in $sensors; do
-  base=""
   for effect in all $effects; do
     spec=$([ "$effect" = all ] && echo "" || echo "-$effect")
-    dir=$out/$sensor-$trajectory-$effect
-    [ -f "$dir/synth.json" ] || "$vobench" synth --sensor "$sensor" --trajectory "$trajectory" --frames "$frames" --effects "$spec" \
-      --out "$dir" > /dev/null 2>&1
-    read -r ate rpe rot <<< "$(metric "$dir")"
-    [ -z "$base" ] && base=$rpe
-    change=$(python3 -c "print(f'{100 * ($rpe - $base) / $base:+.0f} %')")
-    printf '| %s | %s | %.4f | %.4f | %.3f | %s |\n' "$sensor" "$([ "$effect" = all ] && echo '(none: all on)' || echo "$effect")" \
-      "$ate" "$rpe" "$rot" "$change"
+    rows=""
+    for seed in $seeds; do
+      dir=$out/$sensor-$trajectory-s$seed-$effect
+      [ -f "$dir/synth.json" ] || "$vobench" synth --sensor "$sensor" --trajectory "$trajectory" --frames "$frames" --seed "$seed" \
+        --effects "$spec" --out "$dir" > /dev/null 2>&1
+      read -r ate rpe rot <<< "$(metric "$dir")"
+      read -r _ base _ <<< "$(metric "$out/$sensor-$trajectory-s$seed-all")"
+      rows="$rows $ate,$rpe,$rot,$base"
+    done
+    python3 - "$sensor" "$([ "$effect" = all ] && echo '(none: all on)' || echo "$effect")" $rows <<'PY'
+import statistics, sys
+sensor, name, rows = sys.argv[1], sys.argv[2], [[float(x) for x in r.split(",")] for r in sys.argv[3:]]
+med = lambda k: statistics.median(r[k] for r in rows)
+change = statistics.median(100 * (r[1] - r[3]) / r[3] for r in rows)
+print(f"| {sensor} | {name} | {med(0):.4f} | {med(1):.4f} | {med(2):.3f} | {change:+.0f} % |")
+PY
   done
 done
