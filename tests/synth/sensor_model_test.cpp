@@ -479,3 +479,39 @@ TEST_CASE("smooth_noise: a second, smooth part of the colour noise with the set 
     CHECK(parse_effects("").smooth_noise == true);
     CHECK(kinect2().smooth_noise_dn == 0);  // not measured: no smooth part
 }
+
+TEST_CASE("motion_blur smears the image along the motion, sub-pixel streaks included", "[synth][sensor]") {
+    // The camera slides sideways (camera x) past the textured wall at 2 m: a streak of f·v·t_exp/z px,
+    // horizontal. Without noise, vignetting or optics blur the blur is all that differs from the sharp
+    // image, and it must lower the horizontal gradients far more than the vertical ones.
+    const double z = 2.0;
+    TestRig rig(z);
+    SensorModel sensor = kinect1();
+    const double interval = 0.1, fraction = sensor.exposure_s / interval;
+    const auto render = [&](const char* effects, double streak_px) {
+        sensor.effects = parse_effects(effects);
+        const double slide = streak_px * z / (sensor.color.fx * fraction);  // camera motion over one interval
+        Eigen::Isometry3d next = rig.pose;
+        next.translation() += rig.pose.linear() * Eigen::Vector3d(slide, 0, 0);
+        cv::Mat grey;
+        cv::cvtColor(Renderer(rig.scene, sensor, 5).render(0, rig.pose, next, interval, true).color, grey, cv::COLOR_BGR2GRAY);
+        grey.convertTo(grey, CV_32F);
+        return grey;
+    };
+    const auto energy = [](const cv::Mat& grey, int dx, int dy) {  // mean squared difference to the neighbour
+        const cv::Rect inner(8, 8, grey.cols - 16, grey.rows - 16);
+        const cv::Mat d = grey(inner) - grey(inner + cv::Point(dx, dy));
+        return cv::mean(d.mul(d))[0];
+    };
+    const cv::Mat sharp = render("none", 0.6);  // motion_blur off: the pose alone
+    REQUIRE(energy(sharp, 1, 0) > 1.0);         // the wall is textured, so the blur has something to smear
+    for (double streak : {0.6, 3.0}) {
+        const cv::Mat blurred = render("none,+motion_blur", streak);
+        const double horizontal = energy(blurred, 1, 0) / energy(sharp, 1, 0), vertical = energy(blurred, 0, 1) / energy(sharp, 0, 1);
+        INFO("streak " << streak << " px: horizontal gradient energy ×" << horizontal << ", vertical ×" << vertical);
+        CHECK(cv::norm(blurred, sharp, cv::NORM_L1) > 0);
+        CHECK(horizontal < (streak < 1 ? 0.95 : 0.6));
+        CHECK(vertical > 0.85);
+        CHECK(horizontal < vertical);
+    }
+}

@@ -33,15 +33,16 @@ const std::vector<double> srgb_table = [] {
 
 double srgb(double linear) { return srgb_table[static_cast<std::size_t>(std::clamp(linear, 0.0, 1.0) * 4096.0 + 0.5)]; }
 
-// The motion blur's samples along a streak: at most this many, at the fractions k / (n − 1) of its
-// length, tabulated once (each entry is the quotient the division gives; a division per sample was
-// a fifth of the blur's time).
+// The motion blur's samples along a streak: at most this many, at the midpoints (k + ½) / n of n
+// equal parts of its length — the midpoint rule for the exposure's average, which with the samples
+// interpolated between pixels is exact for a streak under a pixel — tabulated once (each entry is
+// the quotient the division gives; a division per sample was a fifth of the blur's time).
 constexpr int kMaxBlurSamples = 24;
 struct BlurFractions {
     double table[kMaxBlurSamples + 1][kMaxBlurSamples] = {};
     BlurFractions() {
         for (int n = 2; n <= kMaxBlurSamples; ++n)
-            for (int k = 0; k < n; ++k) table[n][k] = static_cast<double>(k) / (n - 1);
+            for (int k = 0; k < n; ++k) table[n][k] = (k + 0.5) / n;
     }
     const double* operator[](int n) const { return table[n]; }
 };
@@ -222,11 +223,16 @@ void Renderer::render_color(uint64_t frame, const PlannedFrame& f, bool blur, Re
                 const Eigen::Vector2d path = pb - pa;
                 const double* fractions = blur_fractions[samples];
                 cv::Vec3f sum(0, 0, 0);
+                // Each sample interpolated between its four pixels: read at the nearest pixel, a streak
+                // under a pixel (slow motion, far surfaces) would leave the image exactly sharp.
                 for (int k = 0; k < samples; ++k) {
                     const Eigen::Vector2d p = pa + path * fractions[k];
-                    const int x = std::clamp(static_cast<int>(p.x() + 0.5), 0, W - 1);
-                    const int y = std::clamp(static_cast<int>(p.y() + 0.5), 0, H - 1);
-                    sum += linear.at<cv::Vec3f>(y, x);
+                    const double x = std::clamp(p.x(), 0.0, W - 1.0), y = std::clamp(p.y(), 0.0, H - 1.0);
+                    const int x0 = std::min(static_cast<int>(x), W - 2), y0 = std::min(static_cast<int>(y), H - 2);
+                    const float ax = static_cast<float>(x - x0), ay = static_cast<float>(y - y0);
+                    const cv::Vec3f* r0 = linear.ptr<cv::Vec3f>(y0);
+                    const cv::Vec3f* r1 = linear.ptr<cv::Vec3f>(y0 + 1);
+                    sum += (r0[x0] * (1 - ax) + r0[x0 + 1] * ax) * (1 - ay) + (r1[x0] * (1 - ax) + r1[x0 + 1] * ax) * ay;
                 }
                 blurred.at<cv::Vec3f>(v, u) = sum / static_cast<float>(samples);
             }

@@ -125,7 +125,7 @@ struct SensorModel {
     double mosaic_noise_dn = 0;             // mosaic_noise: σ at each site of the RGGB mosaic (0: not measured, noise per pixel)
     double smooth_noise_dn = 0;             // smooth_noise: σ of the smooth part per channel (0: not measured, none)
     double smooth_noise_px = 1.0;           // ... and its Gaussian correlation length, px of a 640-wide image
-    double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing
+    double optics_sigma_px = 0.6;           // Gaussian point spread of lens and demosaicing (Kinect v2: assumed)
     double vignetting = 0.25;               // relative brightness loss in the image corners (∝ r²)
     double exposure_target = 0.34;          // auto-exposure: linear mean luminance aimed at (sRGB ≈ 157)
     double exposure_time_constant_s = 0.3;  // ... and how fast it follows the scene (assumed; Kinect v1: measured)
