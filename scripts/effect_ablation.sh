@@ -5,7 +5,7 @@
 # RPE over 4 frames) and prints "effect → RPE change" per sensor as a Markdown table. For each render
 # seed the only difference between two rows is the effect; over 60 frames one seed's RPE moves by tens
 # of per cent with any change to the frames, so give several seeds (e.g. "1 2 3"): the table then
-# shows the median over seeds, and the change is the median of each seed's own change.
+# shows the median over seeds, and the change is the median of each seed's own change [their range].
 #   scripts/effect_ablation.sh build/bin/vobench /tmp/ablation "kinect1 kinect2" explore1 60 put_vo "1 2 3"
 set -euo pipefail
 vobench=$1 out=$2 sensors=${3:-"kinect1 kinect2"} trajectory=${4:-explore1} frames=${5:-60} algorithm=${6:-put_vo}
@@ -35,8 +35,9 @@ for sensor in $sensors; do
 import statistics, sys
 sensor, name, rows = sys.argv[1], sys.argv[2], [[float(x) for x in r.split(",")] for r in sys.argv[3:]]
 med = lambda k: statistics.median(r[k] for r in rows)
-change = statistics.median(100 * (r[1] - r[3]) / r[3] for r in rows)
-print(f"| {sensor} | {name} | {med(0):.4f} | {med(1):.4f} | {med(2):.3f} | {change:+.0f} % |")
+changes = [100 * (r[1] - r[3]) / r[3] for r in rows]
+spread = f" [{min(changes):+.0f} … {max(changes):+.0f}]" if len(changes) > 1 else ""
+print(f"| {sensor} | {name} | {med(0):.4f} | {med(1):.4f} | {med(2):.3f} | {statistics.median(changes):+.0f} %{spread} |")
 PY
   done
 done
