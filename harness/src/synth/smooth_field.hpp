@@ -31,6 +31,26 @@ public:
     double at(double x, double y) const {
         double wx[4], wy[4];
         const int ix = weights(x / spacing_, wx), iy = weights(y / spacing_, wy);
+        return combine(ix, wx, iy, wy);
+    }
+
+    // The field along row y at the integer pixels x = 0 … width_px − 1, into out: the same values as
+    // at(x, y), bit for bit, with the columns' weights computed once per field instead of per pixel
+    // (per pixel, this field cost 4.5 % of a tum-fr1 frame; docs/synthetic-sensors.md).
+    void row(int y, double* out) const {
+        double wy[4];
+        const int iy = weights(y / spacing_, wy);
+        for (std::size_t x = 0; x < pixel_columns_.size(); ++x) out[x] = combine(pixel_columns_[x].first, pixel_columns_[x].w, iy, wy);
+    }
+
+private:
+    struct ColumnWeights {
+        int first = 0;
+        double w[4] = {};
+    };
+
+    // The 4×4 lattice values from (ix, iy) on, weighted by wx along the rows and wy across them.
+    double combine(int ix, const double wx[4], int iy, const double wy[4]) const {
         double sum = 0;
         for (int j = 0; j < 4; ++j) {
             const double* row =
@@ -39,29 +59,6 @@ public:
         }
         return sum;
     }
-
-    // The field along row y at the integer pixels x = 0 … width_px − 1, into out: the same values as
-    // at(x, y), bit for bit, with the columns' weights computed once per field instead of per pixel
-    // (per pixel, this field cost 4.5 % of a tum-fr1 frame; docs/synthetic-sensors.md).
-    void row(int y, double* out) const {
-        double wy[4];
-        const std::size_t iy = static_cast<std::size_t>(weights(y / spacing_, wy)), stride = static_cast<std::size_t>(columns_);
-        for (std::size_t x = 0; x < pixel_columns_.size(); ++x) {
-            const ColumnWeights& c = pixel_columns_[x];
-            double sum = 0;
-            for (std::size_t j = 0; j < 4; ++j) {
-                const double* r = &values_[(iy + j) * stride + static_cast<std::size_t>(c.first)];
-                sum += wy[j] * (c.w[0] * r[0] + c.w[1] * r[1] + c.w[2] * r[2] + c.w[3] * r[3]);
-            }
-            out[x] = sum;
-        }
-    }
-
-private:
-    struct ColumnWeights {
-        int first = 0;
-        double w[4] = {};
-    };
 
     // Cubic B-spline weights of the four lattice points around s, scaled to unit sum of squares; returns
     // the first point's index (the lattice starts one spacing before the image).
