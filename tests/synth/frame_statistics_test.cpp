@@ -56,6 +56,11 @@ TEST_CASE("stats: noise, missing depth, plane-fit noise and stamp offsets of fra
     CHECK(value(s, "missing_depth.interior") == Approx(0.0));
     CHECK(value(s, "depth_histogram.2_3m") == Approx(1.0));
     CHECK(value(s, "depth_noise_mm.2_3m") == Approx(5.0).epsilon(0.1));
+    // Independent from pixel to pixel: no correlation at any lag (the 0.2-mm rounding to 5000 units a
+    // metre is independent too).
+    CHECK(std::abs(value(s, "depth_noise_corr.right_1px")) < 0.03);
+    CHECK(std::abs(value(s, "depth_noise_corr.right_8px")) < 0.03);
+    CHECK(std::abs(value(s, "depth_noise_corr.below_4px")) < 0.03);
     CHECK(value(s, "stamps.offset_mean_ms") == Approx(10.0).epsilon(1e-3));
     CHECK(value(s, "image.fast_corners") < 50);  // a ramp with noise has few corners at threshold 20
     // Noise independent from pixel to pixel, about its 3-px blur: σ²(1 − 1/(2π·9)) + 1/12 for the

@@ -106,6 +106,35 @@ void plane_fit_noise(const cv::Mat& depth_m, int patch, const std::string& key, 
         }
 }
 
+// How the depth noise is shared between neighbours: the residuals of planar 32×32 plane fits at
+// 1.5–3 m (divided by z², so near and far patches weigh as disparity errors do), their products with
+// the residual 1, 4 and 8 px to the right and 4 px below, pooled over patches and frames and divided by
+// the pooled squares. Independent noise gives 0 at every lag; a block matcher's window shares the error
+// of its pixels, a smooth error field keeps it over its length.
+void depth_noise_correlation(const cv::Mat& depth_m, Accumulator& acc) {
+    constexpr int kPatch = 32;
+    constexpr int kLags[] = {1, 4, 8};
+    for (int y = 0; y + kPatch <= depth_m.rows; y += kPatch)
+        for (int x = 0; x + kPatch <= depth_m.cols; x += kPatch) {
+            const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, kPatch);
+            if (!plane || plane->rms > 0.02 * plane->c || plane->c < 1.5 || plane->c >= 3.0) continue;
+            cv::Mat r(kPatch, kPatch, CV_64F);
+            for (int j = 0; j < kPatch; ++j)
+                for (int i = 0; i < kPatch; ++i) r.at<double>(j, i) = depth_m.at<float>(y + j, x + i) - plane->at(i, j, kPatch);
+            r /= plane->c * plane->c;
+            const double squares = r.dot(r);
+            for (int lag : kLags) {
+                const double right = r.colRange(0, kPatch - lag).dot(r.colRange(lag, kPatch));
+                acc.ratio(fmt::format("depth_noise_corr.right_{}px", lag),
+                          fmt::format("depth noise correlation with the pixel {} px to the right (32×32 plane fits, 1.5–3 m)", lag), right,
+                          squares * (kPatch - lag) / kPatch);
+            }
+            const double below = r.rowRange(0, kPatch - 4).dot(r.rowRange(4, kPatch));
+            acc.ratio("depth_noise_corr.below_4px", "depth noise correlation with the pixel 4 px below (32×32 plane fits, 1.5–3 m)", below,
+                      squares * (kPatch - 4) / kPatch);
+        }
+}
+
 void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc) {
     const int W = depth_m.cols, H = depth_m.rows;
     cv::Mat missing = depth_m <= 0;
@@ -157,6 +186,7 @@ void measure_depth(const cv::Mat& depth_m, const cv::Mat& grey, Accumulator& acc
     // across the image (it bends a fitted plane within 8 px only a little, but not within 32).
     plane_fit_noise(depth_m, 8, "depth_noise_mm.", "depth noise (plane fit RMS)", acc);
     plane_fit_noise(depth_m, 32, "depth_noise_32px_mm.", "depth noise (plane fit RMS, 32×32 patches)", acc);
+    depth_noise_correlation(depth_m, acc);
     if (const auto ratio = texture_edge_depth_noise_ratio(depth_m, grey))
         acc.sample("depth_noise.texture_edge_ratio", "depth noise on planes at grey-level edges ÷ away from them (median over frames)",
                    *ratio);

@@ -6,7 +6,9 @@
 //   missing depth: overall, in the 16-px image border, by brightness of the colour pixel, and by
 //     range (a hole takes the range of the nearest valid depth within 8 px; holes with none are "far");
 //   depth noise: the median residual RMS of plane fits z = a·u + b·v + c in 8×8 patches of complete
-//     depth that are planar (residual < 2 % of z), by range band;
+//     depth that are planar (residual < 2 % of z), by range band; the same in 32×32 patches, and how
+//     the noise is shared between neighbours there (at 1.5–3 m: the residuals' correlation with those
+//     1, 4 and 8 px to the right and 4 px below — a block matcher's window shares it over its width);
 //   the depth histogram (share of valid pixels per 1 m band);
 //   image noise: Immerkær's estimator (1996, "Fast noise variance estimation") on the grey image,
 //     σ = √(π/2) / (6 (W−2)(H−2)) · Σ |I ∗ N|, N = [1 −2 1; −2 4 −2; 1 −2 1];
