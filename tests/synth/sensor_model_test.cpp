@@ -327,6 +327,43 @@ TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, on
     CHECK(b.std > 1.3 * a.std);
 }
 
+// The correlation of a fronto-parallel wall's depth errors with those `lag` px to the right, over the
+// central 120×120 px.
+double wall_correlation(const cv::Mat& depth, double z, int lag) {
+    double products = 0, squares = 0;
+    for (int v = depth.rows / 2 - 60; v < depth.rows / 2 + 60; ++v)
+        for (int u = depth.cols / 2 - 60; u < depth.cols / 2 + 60; ++u) {
+            const double a = depth.at<float>(v, u) - z, b = depth.at<float>(v, u + lag) - z;
+            products += a * b;
+            squares += a * a;
+        }
+    return products / squares;
+}
+
+TEST_CASE("Kinect v1's disparity noise is shared over its matching window, as a box shares it", "[synth][sensor]") {
+    const double z = 2.0;
+    TestRig rig(z);
+    const auto depth = [&](double window_px) {
+        SensorModel sensor = kinect1();
+        sensor.effects = parse_effects("-correlated_depth_noise");
+        sensor.disparity_window_px = window_px;
+        return Renderer(rig.scene, sensor, 7).render(0, rig.pose, rig.pose, 0.1, false).depth_native;
+    };
+    // PUTK²'s 320-column depth grid: the 7-px window (of a 640-wide image) is 3 of its pixels, whose
+    // box shares 2/3 of the error with the next pixel, 1/3 with the one after and none beyond. The
+    // disparity's rounding to 1/8 px adds an error of its own to each pixel and lowers the shares.
+    REQUIRE(kinect1().disparity_window_px == 7);
+    const cv::Mat windowed = depth(7), independent = depth(0);
+    INFO("windowed: " << wall_correlation(windowed, z, 1) << " / " << wall_correlation(windowed, z, 2) << " / "
+                      << wall_correlation(windowed, z, 3) << "; independent: " << wall_correlation(independent, z, 1));
+    CHECK(wall_correlation(windowed, z, 1) > 0.35);
+    CHECK(wall_correlation(windowed, z, 1) > wall_correlation(windowed, z, 2) + 0.1);
+    CHECK(std::abs(wall_correlation(windowed, z, 3)) < 0.08);
+    CHECK(std::abs(wall_correlation(independent, z, 1)) < 0.08);
+    // σ per pixel is the window's or not: the same within the sampling error of 14,400 pixels.
+    CHECK(centre_stats(windowed, z, 60).std == Approx(centre_stats(independent, z, 60).std).epsilon(0.1));
+}
+
 TEST_CASE("depth_distortion adds the camera's measured disparity offset field; none for a camera without one", "[synth][sensor]") {
     const double z = 3.0;  // the offset's depth error grows as z²: at 3 m it is centimetres
     TestRig rig(z);

@@ -20,6 +20,23 @@ namespace vobench::synth {
 
 namespace {
 
+// The matching window in pixels of this grid, odd (a centred box), 1 for none.
+int matching_window_px(double width_px) { return width_px < 2 ? 1 : 2 * static_cast<int>(std::lround((width_px - 1) / 2)) + 1; }
+
+// Unit-variance noise averaged over a window×window box: each pixel's Gaussian draw (the stream
+// `draws`, indexed as the per-pixel noise is) averaged with its neighbours', times the window so the
+// average keeps unit variance. Its autocorrelation falls linearly to zero at a lag of one window.
+cv::Mat windowed_unit_noise(const HashStream& draws, int W, int H, int window) {
+    cv::Mat noise(H, W, CV_64FC1);
+    tbb::parallel_for(0, H, [&](int v) {
+        double* row = noise.ptr<double>(v);
+        for (int u = 0; u < W; ++u) row[u] = gaussian(draws(static_cast<uint64_t>(v) * W + u));
+    });
+    cv::blur(noise, noise, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT_101);
+    noise *= window;
+    return noise;
+}
+
 // Foreground fattening (sensor_model.hpp, shadow_fill_px): each run of shadowed pixels takes, over its
 // first `fill` pixels, the depth of the measured pixel it starts beside. The shadow lies on the side of
 // the occluder away from the projector, so runs are walked from the occluder: towards +u when the
@@ -133,6 +150,10 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
         return a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
     };
+    // The disparity noise, per pixel or averaged over the matching window.
+    const int noise_window = fx.depth_noise ? matching_window_px(sensor_.disparity_window_px * px) : 1;
+    cv::Mat windowed;
+    if (noise_window > 1) windowed = windowed_unit_noise(random.disparity, W, H, noise_window);
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     cv::Mat lost = cv::Mat::zeros(H, W, CV_8UC1);      // 255 where the return is lost (dark, glossy, far, depth step)
@@ -171,7 +192,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
             }
             double d = fb / z + offset;
             if (fx.depth_noise) {
-                d += sensor_.disparity_sigma_px * gaussian(random.disparity(pixel));
+                d += sensor_.disparity_sigma_px * (noise_window > 1 ? windowed.at<double>(v, u) : gaussian(random.disparity(pixel)));
                 if (correlated) d += correlated_sigma * correlated_row[static_cast<std::size_t>(u)];
                 d = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
             }

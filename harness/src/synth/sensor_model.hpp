@@ -82,6 +82,11 @@ struct SensorModel {
     double baseline_m = 0.075;   // projector–IR camera
     double disparity_step_px = 0.125;
     double disparity_sigma_px = 0.0505;  // with the quantisation: σ_z ≈ 1.425e-3·z² m (their eq. 16 fit)
+    // The per-pixel disparity noise above (effect depth_noise) as a block matcher makes it: the average
+    // of independent draws over this window (a box, pixels of a 640-wide image, odd), rescaled to keep
+    // σ per pixel, so neighbours within a window share most of their error. 0 or 1: independent
+    // from pixel to pixel.
+    double disparity_window_px = 0;
     // Effect correlated_depth_noise: a smooth disparity error field, new each frame, of this σ and
     // correlation length (pixels of a 640-wide image) — the correlation window's errors are shared by
     // neighbouring pixels, so they do not average out over a surface (docs/synthetic-sensors.md).
