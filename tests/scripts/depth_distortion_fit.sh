@@ -4,11 +4,11 @@
 # fit-distortion` measures on the real fr1/rpy sample (within 0.05 px), and it lowers the residual there
 # (fr1/desk, which the fit never sees, is printed beside it); and a rendering of the sample's poses
 # through the camera reads back the same field (a within 0.1 px, b within 0.05, c within 0.5: over the
-# ten offices of sim_to_real.sh a reads back −0.45…−0.36, b 1.052–1.086 and c −1.45…−0.51, office 1
-# −1.45, the farthest from the real −0.969: 90 frames pin the row term down least; generator 11). Then
+# ten offices of sim_to_real.sh a reads back −0.44…−0.36, b 1.051–1.083 and c −1.41…−0.54, office 1
+# −1.41, the farthest from the real −0.969: 90 frames pin the row term down least; generator 13). Then
 # the joint fit (--fit-latency --fit-turn): the reference's turn about x that the rendering reads back
 # is the real sample's within 0.15° (the camera's reference_turn_deg was chosen so; the ten offices
-# read back +0.45…+0.63° against the real +0.52°).
+# read back +0.42…+0.67° against the real +0.52°, office 1 +0.56°).
 set -euo pipefail
 vobench=$1 src=$2 real=$3 work=$4
 seq=$real/rgbd_dataset_freiburg1_rpy

@@ -385,6 +385,12 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         {"exposure_s", sensor.exposure_s},
         {"disparity_distortion_px", sensor.disparity_distortion_px},
         {"shadow_fill_px", sensor.shadow_fill_px},
+        {"disparity_noise_px",  // Kinect v1's disparity error: per pixel (over its matching window) and its smooth part; none for ToF
+         sensor.principle == DepthPrinciple::StructuredLight ? nlohmann::json{{"sigma", sensor.disparity_sigma_px},
+                                                                              {"window", sensor.disparity_window_px},
+                                                                              {"smooth_sigma", sensor.disparity_correlated_sigma_px},
+                                                                              {"smooth_correlation", sensor.disparity_correlation_px}}
+                                                             : nlohmann::json(nullptr)},
         {"min_room_m", office.min_room},
         {"stamp_latency_s", {{"color", latency.color_s}, {"depth", latency.depth_s}}},  // as rendered
         {"camera_clock", {{"color", clock_json(clocks.color)}, {"depth", clock_json(clocks.depth)}}},

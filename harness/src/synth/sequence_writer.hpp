@@ -52,7 +52,8 @@ namespace vobench::synth {
 //    (σ 0.6 → 0.5 px, on the same edge-sharpness statistic).
 // 13: Kinect v1's per-pixel disparity noise is averaged over a 7-px matching window (σ per pixel
 //    kept), measured on the real fr1 frames' depth-noise correlation; its smooth part recalibrated with
-//    it (σ 0.06 → 0.05 px). Kinect v2 renders as in 12.
+//    it (σ 0.06 → 0.05 px); tum-fr1's reference turn (1.05 → 0.86°) and applied disparity field
+//    recalibrated so that renderings read back the real ones again. Kinect v2 renders as in 12.
 constexpr int kGeneratorVersion = 13;
 
 struct SynthOptions {
