@@ -20,6 +20,7 @@ metric() {  # folder → "ATE RPE_t RPE_r"
 echo "| sensor | effect off | ATE [m] | RPE t [m] | RPE r [°] | RPE t change |"
 echo "|---|---|---:|---:|---:|---:|"
 for sensor in $sensors; do
+  declare -A base=()  # seed → the all-on folder's RPE t, tracked once (the "all" pass comes first)
   for effect in all $effects; do
     spec=$([ "$effect" = all ] && echo "" || echo "-$effect")
     rows=""
@@ -28,8 +29,8 @@ for sensor in $sensors; do
       [ -f "$dir/synth.json" ] || "$vobench" synth --sensor "$sensor" --trajectory "$trajectory" --frames "$frames" --seed "$seed" \
         --effects "$spec" --out "$dir" > /dev/null 2>&1
       read -r ate rpe rot <<< "$(metric "$dir")"
-      read -r _ base _ <<< "$(metric "$out/$sensor-$trajectory-s$seed-all")"
-      rows="$rows $ate,$rpe,$rot,$base"
+      [ "$effect" = all ] && base[$seed]=$rpe
+      rows="$rows $ate,$rpe,$rot,${base[$seed]}"
     done
     python3 - "$sensor" "$([ "$effect" = all ] && echo '(none: all on)' || echo "$effect")" $rows <<'PY'
 import statistics, sys

@@ -327,6 +327,8 @@ TEST_CASE("correlated_depth_noise adds a smooth disparity error of its sigma, on
     CHECK(b.std > 1.3 * a.std);
 }
 
+namespace {
+
 // The correlation of a fronto-parallel wall's depth errors with those `lag` px to the right, over the
 // central 120×120 px.
 double wall_correlation(const cv::Mat& depth, double z, int lag) {
@@ -339,6 +341,8 @@ double wall_correlation(const cv::Mat& depth, double z, int lag) {
         }
     return products / squares;
 }
+
+}  // namespace
 
 TEST_CASE("Kinect v1's disparity noise is shared over its matching window, as a box shares it", "[synth][sensor]") {
     const double z = 2.0;
