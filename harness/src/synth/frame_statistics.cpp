@@ -4,6 +4,7 @@
 #include "metrics/trajectory_io.hpp"
 #include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
+#include "synth/depth_noise_persistence.hpp"
 #include "synth/image_spectrum.hpp"
 #include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
@@ -531,10 +532,16 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
         acc.mean("registration.edge_shift_x_px", "depth edges right of colour edges, px (best overlap)", best_x);
         acc.mean("registration.edge_shift_y_px", "depth edges below colour edges, px (best overlap)", best_y);
     }
+    // Every depth image in the list's order (consecutive frames), not only the associated pairs.
+    std::vector<std::filesystem::path> depth_paths;
+    for (const auto& e : depth) depth_paths.push_back(folder / e.path);
+    for (const NoisePersistence& p : same_pixel_noise_correlation(depth_paths, {1, 4}, max_frames, depth_scale))
+        if (p.patches > 0)
+            acc.mean(fmt::format("depth_noise_persistence.gap_{}", p.gap),
+                     fmt::format("depth noise correlation with the same pixel {} frame{} later (32×32 plane fits, 0.8–3 m)", p.gap,
+                                 p.gap == 1 ? "" : "s"),
+                     p.correlation);
     if (rays && std::filesystem::exists(folder / "groundtruth.txt")) {
-        // Every depth image in the list's order (consecutive frames), not only the associated pairs.
-        std::vector<std::filesystem::path> depth_paths;
-        for (const auto& e : depth) depth_paths.push_back(folder / e.path);
         const auto reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
         measure_timing(folder, rgb, depth, pairs, reference, *rays, depth_scale, acc);
         for (const auto& g : reference_consistency(depth_stamps, depth_paths, reference, *rays, {1, 4, 16}, max_frames, depth_scale)) {

@@ -31,7 +31,8 @@ enum RenderSalt : uint64_t {
     kLostReturn,
     kEdgeDropout,
     kCorrelatedDisparity,
-    kSmoothColorNoise
+    kSmoothColorNoise,
+    kFixedDisparity
 };
 
 struct RenderedFrame {

@@ -23,17 +23,42 @@ namespace {
 // The matching window in pixels of this grid, odd (a centred box), 1 for none.
 int matching_window_px(double width_px) { return width_px < 2 ? 1 : 2 * static_cast<int>(std::lround((width_px - 1) / 2)) + 1; }
 
+// The part of a pixel's disparity draw that repeats from frame to frame: a block matcher's error at
+// pixel (u, v) depends on the projector's speckle that its window sees there, which for a rigid
+// projector and camera is the same whenever the pixel sees the same disparity d. Unit variance:
+// independent draws on a lattice of d every `length` pixels, blended between the two nearest with
+// weights √(1 − t), √t, so that the draw changes smoothly as d drifts. The cheap normal
+// (gaussian_fast) is enough: the matching window averages 49 of them.
+double sensor_fixed_draw(const HashStream& fixed, uint64_t pixel, double d, double length) {
+    const double x = d / length, k = std::floor(x), t = x - k;
+    const uint64_t bin = static_cast<uint64_t>(static_cast<int64_t>(k) + (int64_t{1} << 40));
+    const uint64_t at_pixel = fixed(pixel);
+    return std::sqrt(1.0 - t) * gaussian_fast(hash(at_pixel, bin)) + std::sqrt(t) * gaussian_fast(hash(at_pixel, bin + 1));
+}
+
 // Unit-variance noise averaged over a window×window box: each pixel's Gaussian draw (the stream
 // `draws`, indexed as the per-pixel noise is) averaged with its neighbours', times the window so the
 // average keeps unit variance. Its autocorrelation falls linearly to zero at a lag of one window.
-cv::Mat windowed_unit_noise(const HashStream& draws, int W, int H, int window) {
+// With a share ρ > 0, each draw is √(1 − ρ)·(this frame's) + √ρ·sensor_fixed_draw at the pixel's true
+// disparity f·b / z (`truth`: z in metres, 0 where nothing was hit: there the frame's draw alone).
+cv::Mat windowed_unit_noise(const HashStream& draws, const HashStream& fixed, const cv::Mat& truth, double fb, double share, double length,
+                            int window) {
+    const int W = truth.cols, H = truth.rows;
     cv::Mat noise(H, W, CV_64FC1);
+    const double own = std::sqrt(1.0 - share), repeated = std::sqrt(share);
     tbb::parallel_for(0, H, [&](int v) {
         double* row = noise.ptr<double>(v);
-        for (int u = 0; u < W; ++u) row[u] = gaussian(draws(static_cast<uint64_t>(v) * W + u));
+        const float* z = truth.ptr<float>(v);
+        for (int u = 0; u < W; ++u) {
+            const uint64_t pixel = static_cast<uint64_t>(v) * W + u;
+            row[u] = gaussian(draws(pixel));
+            if (share > 0 && z[u] > 0) row[u] = own * row[u] + repeated * sensor_fixed_draw(fixed, pixel, fb / z[u], length);
+        }
     });
-    cv::blur(noise, noise, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT_101);
-    noise *= window;
+    if (window > 1) {
+        cv::blur(noise, noise, cv::Size(window, window), cv::Point(-1, -1), cv::BORDER_REFLECT_101);
+        noise *= window;
+    }
     return noise;
 }
 
@@ -150,11 +175,8 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
         return a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
     };
-    // The disparity noise, per pixel or averaged over the matching window.
-    const int noise_window = fx.depth_noise ? matching_window_px(sensor_.disparity_window_px * px) : 1;
-    cv::Mat windowed;
-    if (noise_window > 1) windowed = windowed_unit_noise(random.disparity, W, H, noise_window);
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
+    cv::Mat clean = cv::Mat::zeros(H, W, CV_64FC1);  // the disparity before noise, where a pixel is measured
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
     cv::Mat lost = cv::Mat::zeros(H, W, CV_8UC1);      // 255 where the return is lost (dark, glossy, far, depth step)
     cv::Mat shadowed = cv::Mat::zeros(H, W, CV_8UC1);  // 255 where the projector's pattern does not reach
@@ -162,11 +184,6 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
         bool found[RayIndex::kPacket];
-        std::vector<double> correlated_row;
-        if (correlated) {
-            correlated_row.resize(static_cast<std::size_t>(W));
-            correlated->row(v, correlated_row.data());
-        }
         for (int u = 0; u < W; ++u) {
             const int lane = u % RayIndex::kPacket;
             if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
@@ -190,9 +207,28 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                 out.depth_native.at<float>(v, u) = static_cast<float>(z);
                 continue;
             }
-            double d = fb / z + offset;
+            clean.at<double>(v, u) = fb / z + offset;
+        }
+    });
+    // The disparity noise, per pixel or averaged over the matching window, part of it repeating at a
+    // pixel from frame to frame (sensor_fixed_draw), then the quantisation.
+    const int noise_window = fx.depth_noise ? matching_window_px(sensor_.disparity_window_px * px) : 1;
+    const double fixed_share = fx.depth_noise && fx.fixed_pattern_noise ? sensor_.disparity_fixed_share : 0.0;
+    cv::Mat unit_noise;
+    if (fx.depth_noise)
+        unit_noise = windowed_unit_noise(random.disparity, HashStream(seed_, kFixedDisparity, 0), truth, fb, fixed_share,
+                                         std::max(1e-3, sensor_.disparity_fixed_length_px), noise_window);
+    tbb::parallel_for(0, H, [&](int v) {
+        std::vector<double> correlated_row;
+        if (correlated) {
+            correlated_row.resize(static_cast<std::size_t>(W));
+            correlated->row(v, correlated_row.data());
+        }
+        for (int u = 0; u < W; ++u) {
+            double d = clean.at<double>(v, u);
+            if (d == 0) continue;  // not measured, or measured without noise above
             if (fx.depth_noise) {
-                d += sensor_.disparity_sigma_px * (noise_window > 1 ? windowed.at<double>(v, u) : gaussian(random.disparity(pixel)));
+                d += sensor_.disparity_sigma_px * unit_noise.at<double>(v, u);
                 if (correlated) d += correlated_sigma * correlated_row[static_cast<std::size_t>(u)];
                 d = std::round(d / sensor_.disparity_step_px) * sensor_.disparity_step_px;
             }

@@ -58,6 +58,13 @@ SensorModel kinect1() {
     // at 0–3 m then lies between the two real sequences' (docs/synthetic-sensors.md, "The matching
     // window").
     s.disparity_window_px = 7;
+    // fixed_pattern_noise: real fr1/rpy's 32×32 plane-fit residuals at 0.8–3 m correlate 0.26 with the
+    // same pixel one frame later and 0.13 four frames later (fr1/desk 0.40 / 0.21; `synth stats`,
+    // "depth noise correlation with the same pixel …"); frames drawn anew read 0.05 / 0.02. Half the
+    // per-pixel variance repeating, drifting over 8 px of disparity, reads 0.27 / 0.13–0.16 on offices 1
+    // and 2 (2 px of drift: 0.25–0.27 / 0.08–0.09, too fast). Only those two lengths were tried.
+    s.disparity_fixed_share = 0.5;
+    s.disparity_fixed_length_px = 8.0;
     // correlated_depth_noise: the σ that brings the one-frame depth residual of the rendered fr1/rpy
     // poses to the real one's in every range band (`synth stats --camera tum-fr1`), with the white σ
     // above kept: 0.06 px with independent draws (0–1 / 1–2 / 2–3 / 3+ m asked for 0.059 / 0.054 /
@@ -160,6 +167,7 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"rolling_shutter", &Effects::rolling_shutter},
                                                                             {"depth_noise", &Effects::depth_noise},
                                                                             {"correlated_depth_noise", &Effects::correlated_depth_noise},
+                                                                            {"fixed_pattern_noise", &Effects::fixed_pattern_noise},
                                                                             {"projector_shadow", &Effects::projector_shadow},
                                                                             {"depth_border", &Effects::depth_border},
                                                                             {"dark_dropout", &Effects::dark_dropout},

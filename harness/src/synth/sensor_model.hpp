@@ -42,6 +42,7 @@ struct Effects {
     // Depth.
     bool depth_noise = true;             // the sensor's axial and lateral noise (and Kinect v1's quantisation)
     bool correlated_depth_noise = true;  // Kinect v1: disparity errors that are smooth across the image
+    bool fixed_pattern_noise = true;     // Kinect v1: part of a pixel's disparity error repeats from frame to frame
     bool projector_shadow = true;        // Kinect v1: no depth where the projector's pattern cannot reach
     bool depth_border = true;            // Kinect v1: the registered depth image's unmeasured border
     bool dark_dropout = true;            // lost returns on dark, glossy and glass surfaces
@@ -87,6 +88,12 @@ struct SensorModel {
     // σ per pixel, so neighbours within a window share most of their error. 0 or 1: independent
     // from pixel to pixel.
     double disparity_window_px = 0;
+    // Effect fixed_pattern_noise: the share of that per-pixel draw's variance which repeats from frame
+    // to frame while a pixel sees the same disparity (the projector's speckle its window sees is the
+    // same), drifting to a new draw over disparity_fixed_length_px of disparity change (pixels of the
+    // 640-wide IR image). 0: a new draw every frame.
+    double disparity_fixed_share = 0.0;
+    double disparity_fixed_length_px = 1.0;
     // Effect correlated_depth_noise: a smooth disparity error field, new each frame, of this σ and
     // correlation length (pixels of a 640-wide image) — the correlation window's errors are shared by
     // neighbouring pixels, so they do not average out over a surface (docs/synthetic-sensors.md).

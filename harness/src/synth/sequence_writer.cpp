@@ -385,9 +385,12 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         {"exposure_s", sensor.exposure_s},
         {"disparity_distortion_px", sensor.disparity_distortion_px},
         {"shadow_fill_px", sensor.shadow_fill_px},
-        {"disparity_noise_px",  // Kinect v1's disparity error: per pixel (over its matching window) and its smooth part; none for ToF
+        {"disparity_noise_px",  // Kinect v1's disparity error: per pixel (over its matching window, part of it repeating from frame to
+                                // frame) and its smooth part; none for ToF
          sensor.principle == DepthPrinciple::StructuredLight ? nlohmann::json{{"sigma", sensor.disparity_sigma_px},
                                                                               {"window", sensor.disparity_window_px},
+                                                                              {"repeated_share", sensor.disparity_fixed_share},
+                                                                              {"repeated_drift", sensor.disparity_fixed_length_px},
                                                                               {"smooth_sigma", sensor.disparity_correlated_sigma_px},
                                                                               {"smooth_correlation", sensor.disparity_correlation_px}}
                                                              : nlohmann::json(nullptr)},

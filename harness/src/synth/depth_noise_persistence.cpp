@@ -1,0 +1,80 @@
+#include "synth/depth_noise_persistence.hpp"
+
+#include "synth/depth_geometry.hpp"
+#include "synth/texture_edge_depth_noise.hpp"
+
+#include <opencv2/core.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <stdexcept>
+
+namespace vobench::synth {
+namespace {
+
+constexpr int kPatch = 32;
+constexpr double kNear = 0.8, kFar = 3.0, kPlanar = 0.02;
+
+// The patch's residuals about its plane, divided by its depth², or nothing when it is incomplete, not
+// planar or out of range.
+std::optional<cv::Mat> scaled_residuals(const cv::Mat& depth_m, int x, int y) {
+    const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, kPatch);
+    if (!plane || plane->c < kNear || plane->c >= kFar || plane->rms > kPlanar * plane->c) return std::nullopt;
+    cv::Mat r(kPatch, kPatch, CV_64F);
+    for (int j = 0; j < kPatch; ++j)
+        for (int i = 0; i < kPatch; ++i) r.at<double>(j, i) = depth_m.at<float>(y + j, x + i) - plane->at(i, j, kPatch);
+    return cv::Mat(r / (plane->c * plane->c));
+}
+
+}  // namespace
+
+std::vector<NoisePersistence> same_pixel_noise_correlation(const std::vector<std::filesystem::path>& depth_paths,
+                                                           const std::vector<int>& gaps, std::size_t max_pairs, double depth_scale) {
+    std::map<std::size_t, cv::Mat> loaded;  // every image read once
+    cv::Size size;
+    auto image = [&](std::size_t k) -> const cv::Mat& {
+        auto it = loaded.find(k);
+        if (it != loaded.end()) return it->second;
+        cv::Mat d = read_depth_metres(depth_paths[k], depth_scale);
+        if (size.empty()) size = d.size();
+        if (d.size() != size) throw std::runtime_error(depth_paths[k].string() + ": not the size of the folder's first depth image");
+        return loaded.emplace(k, std::move(d)).first->second;
+    };
+    std::vector<NoisePersistence> out;
+    for (int gap : gaps) {
+        NoisePersistence p;
+        p.gap = gap;
+        std::vector<double> correlations;
+        const std::size_t g = static_cast<std::size_t>(std::max(gap, 1));
+        const std::size_t starts = depth_paths.size() > g ? depth_paths.size() - g : 0;
+        const std::size_t n = max_pairs > 0 ? std::min(max_pairs, starts) : starts;
+        for (std::size_t s = 0; s < n; ++s) {
+            const std::size_t k = n == starts ? s : s * starts / n;
+            const cv::Mat& a = image(k);
+            const cv::Mat& b = image(k + g);
+            for (int y = 0; y + kPatch <= a.rows; y += kPatch)
+                for (int x = 0; x + kPatch <= a.cols; x += kPatch) {
+                    const auto ra = scaled_residuals(a, x, y);
+                    if (!ra) continue;
+                    const auto rb = scaled_residuals(b, x, y);
+                    if (!rb) continue;
+                    const double norms = std::sqrt(ra->dot(*ra) * rb->dot(*rb));
+                    if (norms > 0) correlations.push_back(ra->dot(*rb) / norms);
+                }
+        }
+        p.patches = correlations.size();
+        p.correlation = std::numeric_limits<double>::quiet_NaN();
+        if (!correlations.empty()) {
+            const auto middle = correlations.begin() + static_cast<std::ptrdiff_t>(correlations.size() / 2);
+            std::nth_element(correlations.begin(), middle, correlations.end());
+            p.correlation = *middle;
+        }
+        out.push_back(p);
+    }
+    return out;
+}
+
+}  // namespace vobench::synth
