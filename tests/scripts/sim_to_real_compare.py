@@ -14,7 +14,8 @@ differed by up to 40 % (docs/synthetic-sensors.md); the check renders ten. The r
 the median over the renderings, and the range of the per-rendering ratios is printed beside it. How
 firmly ten offices decide is printed after the verdict (not part of it): a bootstrap over the
 renderings (2000 resamples with replacement, seed 1) gives each median ratio's 90 % interval and the
-share of resamples whose order by rotation matches the real one.
+share of resamples whose order by rotation matches the real one. Last, also outside the verdict, how
+each algorithm's frame-to-frame errors follow each other (error_persistence), real and rendered.
 
 Usage: sim_to_real_compare.py VOBENCH SWEEP_DIR [--lo 0.67] [--hi 1.5] [--report-only]
 """
@@ -59,6 +60,61 @@ def precision(algorithms, renderings, mean, names, resamples=2000):
     print(f"the real order by rotational RPE (1 s) in {100.0 * same / resamples:.0f} % of the resamples")
 
 
+def read_poses(path):
+    """A TUM-format trajectory: (stamp, 3×3 rotation as rows, translation) per line."""
+    poses = []
+    for line in pathlib.Path(path).read_text().splitlines():
+        f = line.split()
+        if not f or f[0].startswith("#"):
+            continue
+        t, x, y, z, qx, qy, qz, qw = (float(v) for v in f[:8])
+        n = (qx * qx + qy * qy + qz * qz + qw * qw) ** 0.5
+        qx, qy, qz, qw = qx / n, qy / n, qz / n, qw / n
+        r = [[1 - 2 * (qy * qy + qz * qz), 2 * (qx * qy - qz * qw), 2 * (qx * qz + qy * qw)],
+             [2 * (qx * qy + qz * qw), 1 - 2 * (qx * qx + qz * qz), 2 * (qy * qz - qx * qw)],
+             [2 * (qx * qz - qy * qw), 2 * (qy * qz + qx * qw), 1 - 2 * (qx * qx + qy * qy)]]
+        poses.append((t, r, [x, y, z]))
+    return poses
+
+
+def relative_translation(a, b):
+    """The translation of a⁻¹·b for poses (rotation, translation)."""
+    (ra, ta), (_, tb) = a, b
+    d = [tb[i] - ta[i] for i in range(3)]
+    return [sum(ra[k][i] * d[k] for k in range(3)) for i in range(3)], [[sum(ra[k][i] * b[0][k][j] for k in range(3)) for j in range(3)]
+                                                                         for i in range(3)]
+
+
+def error_persistence(gt_path, est_path, max_offset_s=0.02):
+    """How a VO's frame-to-frame errors follow each other: the median cosine between the translation
+    errors of consecutive one-frame pairs (error E = (G_i⁻¹ G_i+1)⁻¹ (T_i⁻¹ T_i+1), ground truth at the
+    nearest stamp). Errors drawn anew each frame alternate (about −0.5 for an error of each frame's
+    own); an error that persists over frames (a bias the frames share) pushes it towards +1, and makes
+    RPE grow faster with Δ than independent errors would."""
+    gt, est = read_poses(gt_path), read_poses(est_path)
+    if not gt or len(est) < 3:
+        return float("nan")
+    errors = []
+    for (t0, r0, p0), (t1, r1, p1) in zip(est, est[1:]):
+        g0 = min(gt, key=lambda g: abs(g[0] - t0))
+        g1 = min(gt, key=lambda g: abs(g[0] - t1))
+        if abs(g0[0] - t0) > max_offset_s or abs(g1[0] - t1) > max_offset_s:
+            errors.append(None)
+            continue
+        dg, rg = relative_translation((g0[1], g0[2]), (g1[1], g1[2]))
+        de, _ = relative_translation((r0, p0), (r1, p1))
+        # E's translation: Rg_rel⁻¹ (de − dg)
+        errors.append([sum(rg[k][i] * (de[k] - dg[k]) for k in range(3)) for i in range(3)])
+    cosines = []
+    for a, b in zip(errors, errors[1:]):
+        if a is None or b is None:
+            continue
+        na, nb = sum(v * v for v in a) ** 0.5, sum(v * v for v in b) ** 0.5
+        if na > 0 and nb > 0:
+            cosines.append(sum(x * y for x, y in zip(a, b)) / (na * nb))
+    return statistics.median(cosines) if cosines else float("nan")
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("vobench")
@@ -68,6 +124,7 @@ def main():
     ap.add_argument("--report-only", action="store_true")
     a = ap.parse_args()
     values = {}  # (algorithm, dataset) -> list of (t4, r4, t1s, r1s)
+    persistence = {}  # (algorithm, dataset) -> error_persistence per repeat
     for cell_file in sorted(pathlib.Path(a.sweep, "runs").glob("*/cell.json")):
         run = cell_file.parent
         cell = json.loads(cell_file.read_text())
@@ -78,6 +135,7 @@ def main():
         gt, est = str(run / "groundtruth.txt"), str(run / "trajectory.txt")
         row = evaluate(a.vobench, gt, est, 4, "f") + evaluate(a.vobench, gt, est, 1, "s")
         values.setdefault((cell["algorithm"], cell["dataset"]), []).append(row)
+        persistence.setdefault((cell["algorithm"], cell["dataset"]), []).append(error_persistence(gt, est))
     algorithms = sorted({k[0] for k in values})
     if not algorithms:
         print("the sweep holds no cells", file=sys.stderr)
@@ -115,6 +173,13 @@ def main():
         print("FAIL: " + f)
     if len(renderings) > 1:
         precision(algorithms, renderings, mean, names)
+    # Not part of the verdict: whether the errors persist from frame to frame as on the real sample.
+    print("\nerror persistence (median cosine between consecutive one-frame translation errors; < 0: they alternate):")
+    print("| algorithm | real | rendered (median) [range] |")
+    print("|---|---:|---:|")
+    for alg in algorithms:
+        each = [statistics.mean(persistence[(alg, d)]) for d in renderings]
+        print(f"| {alg} | {statistics.mean(persistence[(alg, 'real')]):+.2f} | {statistics.median(each):+.2f} [{min(each):+.2f}…{max(each):+.2f}] |")
     return 0 if a.report_only or not failures else 1
 
 
