@@ -294,6 +294,8 @@ def synth_inputs(args, w):
             r"unknown effect 'motion_blurr'")
     refused("a misspelt correlated_depth_noise", ["synth", "--effects", "+correlated_depth_nois", "--frames", "2", "--out",
                                                  os.path.join(d, "out")], r"unknown effect 'correlated_depth_nois'.*correlated_depth_noise")
+    refused("a misspelt fixed_pattern_noise", ["synth", "--effects", "-fixed_pattern_nois", "--frames", "2", "--out", os.path.join(d, "out")],
+            r"unknown effect 'fixed_pattern_nois'.*fixed_pattern_noise")
     refused("a misspelt depth_distortion", ["synth", "--effects", "-depth_distorsion", "--frames", "2", "--out", os.path.join(d, "out")],
             r"unknown effect 'depth_distorsion'.*depth_distortion")
     refused("a misspelt stamp_latency", ["synth", "--effects", "-stamp_latncy", "--frames", "2", "--out", os.path.join(d, "out")],
@@ -421,6 +423,20 @@ def synth_inputs(args, w):
         write(os.path.join(b, "rgb", "unpaired.png"), "not a png")
 
     broken("a corrupt unpaired colour image between two frames", corrupt_colour_between_frames, r"unpaired\.png: cannot be decoded")
+
+    def small_depth_between_frames(b):
+        # A depth image no colour image goes with, 160×120 between the first two 640×480 frames: the
+        # noise persistence (depth_noise_persistence.hpp) compares every depth image with the next.
+        lines = open(os.path.join(b, "depth.txt")).read().splitlines(keepends=True)
+        first = next(i for i, l in enumerate(lines) if not l.startswith("#"))
+        stamp = float(lines[first].split()[0]) + 0.0165
+        lines.insert(first + 1, f"{stamp:.6f} depth/unpaired.png\n")
+        write(os.path.join(b, "depth.txt"), "".join(lines))
+        with open(os.path.join(b, "depth", "unpaired.png"), "wb") as f:
+            f.write(depth_png(160, 120, lambda u, v: 7500))
+
+    broken("an unpaired depth image of another size between two frames", small_depth_between_frames,
+           r"unpaired\.png: not the size of the folder's first depth image")
     # A folder whose name holds the table's own separator: every row of the Markdown table keeps its
     # three cells (labels such as "|Δt|" hold it too).
     piped = os.path.join(d, "stats|a`name")
