@@ -77,6 +77,7 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
         // office (the fit loses more of the field to more noise); the applied field moved by as much
         // the other way. Generator 13's matching window and smaller turn (below) left the offices reading
         // (−0.379, 1.066, −1.014); moved by the difference again, they read (−0.390, 1.065, −0.967).
+        // Generator 14's repeating disparity error leaves them at (−0.393, 1.065, −0.978), c −1.47…−0.55.
         CameraSpec fr1 = tum_camera(tum::kFr1);
         fr1.disparity_distortion_fit_px = {-0.389, 1.065, -0.969};
         fr1.disparity_distortion_px = {-0.334, 1.130, -1.202};
@@ -91,7 +92,8 @@ CameraSpec camera_by_name_or_file(const std::string& name) {
         // registered depth against the colour camera (about x it can: a 1° turn of the depth would move its
         // edges 9 px against the colour's, and the real offset is 2 px) — docs/synthetic-sensors.md.
         // Generator 13's matching window moved the read-back at 1.05° to +0.52…+0.83° (mean +0.68°), and
-        // 0.81° reads back +0.47°: 0.86° reads back +0.42…+0.67° (mean +0.51°, with the field above).
+        // 0.81° reads back +0.47°: 0.86° reads back +0.42…+0.67° (mean +0.51°, with the field above);
+        // generator 14 +0.41…+0.61° (mean +0.49°).
         fr1.reference_turn_deg = {0.86, 0, 0};
         // Recorded in TUM's lab, a hall: fr1/rpy's farthest depth is 4.7 m (mean over frames), 12 % of
         // its depth beyond 3 m. Offices of at least 6 m give 2.8–4.7 m and 3–10 %, of at least 9 m
