@@ -412,30 +412,24 @@ def synth_inputs(args, w):
     broken("a missing depth image", lambda b: os.remove(first_depth(b)), r"not a 16-bit single-channel PNG")
     broken("a hostile list line", lambda b: write(os.path.join(b, "rgb.txt"), HOSTILE + "\n"), r"rgb\.txt:1")
 
-    def corrupt_colour_between_frames(b):
-        # A colour image no depth image goes with, listed between the first two frames: the brightness
-        # change into the second frame is measured from it, so it is read and must decode.
-        lines = open(os.path.join(b, "rgb.txt")).read().splitlines(keepends=True)
+    def insert_unpaired(b, stream, content):
+        """Lists stream/unpaired.png (rgb or depth) between the first two frames, 16.5 ms after the first,
+        where no image of the other stream goes with it, and writes `content` (bytes) there."""
+        lines = open(os.path.join(b, stream + ".txt")).read().splitlines(keepends=True)
         first = next(i for i, l in enumerate(lines) if not l.startswith("#"))
         stamp = float(lines[first].split()[0]) + 0.0165
-        lines.insert(first + 1, f"{stamp:.6f} rgb/unpaired.png\n")
-        write(os.path.join(b, "rgb.txt"), "".join(lines))
-        write(os.path.join(b, "rgb", "unpaired.png"), "not a png")
+        lines.insert(first + 1, f"{stamp:.6f} {stream}/unpaired.png\n")
+        write(os.path.join(b, stream + ".txt"), "".join(lines))
+        with open(os.path.join(b, stream, "unpaired.png"), "wb") as f:
+            f.write(content)
 
-    broken("a corrupt unpaired colour image between two frames", corrupt_colour_between_frames, r"unpaired\.png: cannot be decoded")
-
-    def small_depth_between_frames(b):
-        # A depth image no colour image goes with, 160×120 between the first two 640×480 frames: the
-        # noise persistence (depth_noise_persistence.hpp) compares every depth image with the next.
-        lines = open(os.path.join(b, "depth.txt")).read().splitlines(keepends=True)
-        first = next(i for i, l in enumerate(lines) if not l.startswith("#"))
-        stamp = float(lines[first].split()[0]) + 0.0165
-        lines.insert(first + 1, f"{stamp:.6f} depth/unpaired.png\n")
-        write(os.path.join(b, "depth.txt"), "".join(lines))
-        with open(os.path.join(b, "depth", "unpaired.png"), "wb") as f:
-            f.write(depth_png(160, 120, lambda u, v: 7500))
-
-    broken("an unpaired depth image of another size between two frames", small_depth_between_frames,
+    # The brightness change into the second frame is measured from an unpaired colour image, so it is
+    # read and must decode; the noise persistence (depth_noise_persistence.hpp) compares every depth
+    # image with the next, so an unpaired one must have the others' size.
+    broken("a corrupt unpaired colour image between two frames", lambda b: insert_unpaired(b, "rgb", b"not a png"),
+           r"unpaired\.png: cannot be decoded")
+    broken("an unpaired depth image of another size between two frames",
+           lambda b: insert_unpaired(b, "depth", depth_png(160, 120, lambda u, v: 7500)),
            r"unpaired\.png: not the size of the folder's first depth image")
     # A folder whose name holds the table's own separator: every row of the Markdown table keeps its
     # three cells (labels such as "|Δt|" hold it too).

@@ -96,8 +96,7 @@ TEST_CASE("synth stats' noise persistence measures only planar patches in range,
     CHECK_THROWS_WITH(same_pixel_noise_correlation(paths, {1}, 0, 5000.0), Catch::Contains(paths[1].string()));
 }
 
-TEST_CASE("Kinect v1's fixed_pattern_noise repeats half a pixel's disparity error while it sees the same disparity",
-          "[synth][sensor]") {
+TEST_CASE("Kinect v1's fixed_pattern_noise repeats half a pixel's disparity error while it sees the same disparity", "[synth][sensor]") {
     const SensorModel k1 = kinect1();
     REQUIRE(k1.disparity_fixed_share == 0.5);
     REQUIRE(parse_effects("").fixed_pattern_noise);

@@ -33,7 +33,7 @@ std::optional<cv::Mat> scaled_residuals(const cv::Mat& depth_m, int x, int y) {
 
 std::vector<NoisePersistence> same_pixel_noise_correlation(const std::vector<std::filesystem::path>& depth_paths,
                                                            const std::vector<int>& gaps, std::size_t max_pairs, double depth_scale) {
-    std::map<std::size_t, cv::Mat> loaded;  // every image read once
+    std::map<std::size_t, cv::Mat> loaded;  // the images of the pairs at hand (a long folder's would not fit)
     cv::Size size;
     auto image = [&](std::size_t k) -> const cv::Mat& {
         auto it = loaded.find(k);
@@ -53,6 +53,7 @@ std::vector<NoisePersistence> same_pixel_noise_correlation(const std::vector<std
         const std::size_t n = max_pairs > 0 ? std::min(max_pairs, starts) : starts;
         for (std::size_t s = 0; s < n; ++s) {
             const std::size_t k = n == starts ? s : s * starts / n;
+            loaded.erase(loaded.begin(), loaded.lower_bound(k));  // pairs start at increasing k
             const cv::Mat& a = image(k);
             const cv::Mat& b = image(k + g);
             for (int y = 0; y + kPatch <= a.rows; y += kPatch)

@@ -61,8 +61,9 @@ SensorModel kinect1() {
     // fixed_pattern_noise: real fr1/rpy's 32×32 plane-fit residuals at 0.8–3 m correlate 0.26 with the
     // same pixel one frame later and 0.13 four frames later (fr1/desk 0.40 / 0.21; `synth stats`,
     // "depth noise correlation with the same pixel …"); frames drawn anew read 0.05 / 0.02. Half the
-    // per-pixel variance repeating, drifting over 8 px of disparity, reads 0.27 / 0.13–0.16 on offices 1
-    // and 2 (2 px of drift: 0.25–0.27 / 0.08–0.09, too fast). Only those two lengths were tried.
+    // per-pixel variance repeating, drifting over 8 px of disparity, reads 0.27 / 0.17 (ten offices of
+    // the sim-to-real check: 0.25–0.28 / 0.14–0.22); a 2-px drift faded too fast (offices 1 and 2:
+    // 0.08–0.09 at four frames). Only those two drifts were tried.
     s.disparity_fixed_share = 0.5;
     s.disparity_fixed_length_px = 8.0;
     // correlated_depth_noise: the σ that brings the one-frame depth residual of the rendered fr1/rpy
