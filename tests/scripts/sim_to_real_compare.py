@@ -20,6 +20,7 @@ each algorithm's frame-to-frame errors follow each other (error_persistence), re
 Usage: sim_to_real_compare.py VOBENCH SWEEP_DIR [--lo 0.67] [--hi 1.5] [--report-only]
 """
 import argparse
+import bisect
 import json
 import pathlib
 import random
@@ -77,12 +78,18 @@ def read_poses(path):
     return poses
 
 
-def relative_translation(a, b):
-    """The translation of a⁻¹·b for poses (rotation, translation)."""
-    (ra, ta), (_, tb) = a, b
+def relative(a, b):
+    """a⁻¹·b for poses (rotation as rows, translation): its translation and its rotation."""
+    (ra, ta), (rb, tb) = a, b
     d = [tb[i] - ta[i] for i in range(3)]
-    return [sum(ra[k][i] * d[k] for k in range(3)) for i in range(3)], [[sum(ra[k][i] * b[0][k][j] for k in range(3)) for j in range(3)]
-                                                                         for i in range(3)]
+    return ([sum(ra[k][i] * d[k] for k in range(3)) for i in range(3)],
+            [[sum(ra[k][i] * rb[k][j] for k in range(3)) for j in range(3)] for i in range(3)])
+
+
+def nearest(poses, stamps, t):
+    """The pose of `poses` (sorted by stamp, `stamps` their stamps) nearest to time t."""
+    k = bisect.bisect_left(stamps, t)
+    return min(poses[max(k - 1, 0):k + 1], key=lambda p: abs(p[0] - t))
 
 
 def error_persistence(gt_path, est_path, max_offset_s=0.02):
@@ -91,18 +98,18 @@ def error_persistence(gt_path, est_path, max_offset_s=0.02):
     nearest stamp). Errors drawn anew each frame alternate (about −0.5 for an error of each frame's
     own); an error that persists over frames (a bias the frames share) pushes it towards +1, and makes
     RPE grow faster with Δ than independent errors would."""
-    gt, est = read_poses(gt_path), read_poses(est_path)
+    gt, est = sorted(read_poses(gt_path), key=lambda p: p[0]), read_poses(est_path)
     if not gt or len(est) < 3:
         return float("nan")
+    gt_stamps = [p[0] for p in gt]
     errors = []
     for (t0, r0, p0), (t1, r1, p1) in zip(est, est[1:]):
-        g0 = min(gt, key=lambda g: abs(g[0] - t0))
-        g1 = min(gt, key=lambda g: abs(g[0] - t1))
+        g0, g1 = nearest(gt, gt_stamps, t0), nearest(gt, gt_stamps, t1)
         if abs(g0[0] - t0) > max_offset_s or abs(g1[0] - t1) > max_offset_s:
             errors.append(None)
             continue
-        dg, rg = relative_translation((g0[1], g0[2]), (g1[1], g1[2]))
-        de, _ = relative_translation((r0, p0), (r1, p1))
+        dg, rg = relative((g0[1], g0[2]), (g1[1], g1[2]))
+        de, _ = relative((r0, p0), (r1, p1))
         # E's translation: Rg_rel⁻¹ (de − dg)
         errors.append([sum(rg[k][i] * (de[k] - dg[k]) for k in range(3)) for i in range(3)])
     cosines = []

@@ -18,18 +18,16 @@ namespace {
 constexpr int kPatch = 32;
 constexpr double kNear = 0.8, kFar = 3.0, kPlanar = 0.02;
 
-// The patch's residuals about its plane, divided by its depth², or nothing when it is incomplete, not
-// planar or out of range.
-std::optional<cv::Mat> scaled_residuals(const cv::Mat& depth_m, int x, int y) {
-    const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, kPatch);
-    if (!plane || plane->c < kNear || plane->c >= kFar || plane->rms > kPlanar * plane->c) return std::nullopt;
-    cv::Mat r(kPatch, kPatch, CV_64F);
-    for (int j = 0; j < kPatch; ++j)
-        for (int i = 0; i < kPatch; ++i) r.at<double>(j, i) = depth_m.at<float>(y + j, x + i) - plane->at(i, j, kPatch);
+}  // namespace
+
+std::optional<cv::Mat> scaled_plane_residuals(const cv::Mat& depth_m, int x, int y, int patch, double near, double far) {
+    const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, patch);
+    if (!plane || plane->c < near || plane->c >= far || plane->rms > kPlanar * plane->c) return std::nullopt;
+    cv::Mat r(patch, patch, CV_64F);
+    for (int j = 0; j < patch; ++j)
+        for (int i = 0; i < patch; ++i) r.at<double>(j, i) = depth_m.at<float>(y + j, x + i) - plane->at(i, j, patch);
     return cv::Mat(r / (plane->c * plane->c));
 }
-
-}  // namespace
 
 std::vector<NoisePersistence> same_pixel_noise_correlation(const std::vector<std::filesystem::path>& depth_paths,
                                                            const std::vector<int>& gaps, std::size_t max_pairs, double depth_scale) {
@@ -58,9 +56,9 @@ std::vector<NoisePersistence> same_pixel_noise_correlation(const std::vector<std
             const cv::Mat& b = image(k + g);
             for (int y = 0; y + kPatch <= a.rows; y += kPatch)
                 for (int x = 0; x + kPatch <= a.cols; x += kPatch) {
-                    const auto ra = scaled_residuals(a, x, y);
+                    const auto ra = scaled_plane_residuals(a, x, y, kPatch, kNear, kFar);
                     if (!ra) continue;
-                    const auto rb = scaled_residuals(b, x, y);
+                    const auto rb = scaled_plane_residuals(b, x, y, kPatch, kNear, kFar);
                     if (!rb) continue;
                     const double norms = std::sqrt(ra->dot(*ra) * rb->dot(*rb));
                     if (norms > 0) correlations.push_back(ra->dot(*rb) / norms);

@@ -13,8 +13,11 @@
 // view: pooled, real fr1/rpy reads 0.15 at one frame, the median 0.26).
 #pragma once
 
+#include <opencv2/core.hpp>
+
 #include <cstddef>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 namespace vobench::synth {
@@ -24,6 +27,12 @@ struct NoisePersistence {
     double correlation = 0;   // NaN when no patch was planar in both frames of any pair
     std::size_t patches = 0;  // patch pairs measured
 };
+
+// The residuals of the patch×patch square at (x, y) about its fitted plane (fit_patch_plane), each
+// divided by the plane's depth² (as disparity errors weigh), or nothing when the square is incomplete,
+// not planar (RMS over 2 % of its depth) or its depth outside [near, far) metres. Also the neighbour
+// correlation of `synth stats` (frame_statistics.cpp) is measured on these.
+std::optional<cv::Mat> scaled_plane_residuals(const cv::Mat& depth_m, int x, int y, int patch, double near, double far);
 
 // For each gap, up to `max_pairs` evenly spaced pairs (0: every pair). `depth_paths` in the folder's
 // order; `depth_scale` units per metre. Throws std::runtime_error naming an image that cannot be read

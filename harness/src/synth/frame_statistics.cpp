@@ -117,12 +117,9 @@ void depth_noise_correlation(const cv::Mat& depth_m, Accumulator& acc) {
     constexpr int kLags[] = {1, 4, 8};
     for (int y = 0; y + kPatch <= depth_m.rows; y += kPatch)
         for (int x = 0; x + kPatch <= depth_m.cols; x += kPatch) {
-            const std::optional<PatchPlane> plane = fit_patch_plane(depth_m, x, y, kPatch);
-            if (!plane || plane->rms > 0.02 * plane->c || plane->c < 1.5 || plane->c >= 3.0) continue;
-            cv::Mat r(kPatch, kPatch, CV_64F);
-            for (int j = 0; j < kPatch; ++j)
-                for (int i = 0; i < kPatch; ++i) r.at<double>(j, i) = depth_m.at<float>(y + j, x + i) - plane->at(i, j, kPatch);
-            r /= plane->c * plane->c;
+            const std::optional<cv::Mat> residuals = scaled_plane_residuals(depth_m, x, y, kPatch, 1.5, 3.0);
+            if (!residuals) continue;
+            const cv::Mat& r = *residuals;
             const double squares = r.dot(r);
             for (int lag : kLags) {
                 const double right = r.colRange(0, kPatch - lag).dot(r.colRange(lag, kPatch));
