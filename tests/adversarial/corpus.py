@@ -501,6 +501,22 @@ def synth_inputs(args, w):
     check("synth stats --camera: a groundtruth.txt beside none of the frames leaves out the reference and latency statistics",
           r.returncode == 0 and "geometry.icp_condition" in stats and
           not any(k.startswith("reference.") or k.endswith("_latency_ms") for k in stats), r.stderr[-500:] + str(sorted(stats)))
+    # The fixed disparity pattern (disparity_pattern.hpp) is solved from how points move across the
+    # image: a still camera's 40 frames (the ten images listed four times, one reference pose) carry no
+    # point across it, and a 10-frame folder is too short to tell a pattern from noise — both leave it
+    # out (no made-up 0), the rest is measured.
+    b = os.path.join(d, "stats_still_camera")
+    shutil.copytree(ten, b)
+    for stream in ("rgb", "depth"):
+        paths = [l.split()[1] for l in open(os.path.join(b, stream + ".txt")) if not l.startswith("#")]
+        write(os.path.join(b, stream + ".txt"), "".join(f"{1.0 + k / 30.0:.6f} {paths[k % len(paths)]}\n" for k in range(40)))
+    write(os.path.join(b, "groundtruth.txt"), "".join(f"{0.5 + k / 100.0:.2f} 0 0 0 0 0 0 1\n" for k in range(250)))
+    for name, folder in {"a still camera's 40 frames": b, "a 10-frame folder": ten}.items():
+        r = run([args.vobench, "synth", "stats", folder, "--camera", "putk2-kinect1", "--json"], timeout=300)
+        stats = json.loads(r.stdout)[0]["statistics"] if r.returncode == 0 else {}
+        check(f"synth stats --camera: {name} leaves out the fixed disparity pattern, keeps the rest",
+              r.returncode == 0 and "reference.depth_residual_pct.gap_1" in stats and not any("disparity_pattern" in k for k in stats),
+              r.stderr[-500:] + str(sorted(stats)))
     # synth fit-distortion reads the same folders: a broken depth image, groundtruth.txt or --expect is
     # refused naming it; a reference beside none of the frames gives no field (not one of zeros).
     refused("fit-distortion on a folder without depth.txt", ["synth", "fit-distortion", os.path.join(d, "stats_no depth list")], r"depth\.txt")

@@ -110,9 +110,11 @@ std::vector<tum::ListEntry> contained_list(const std::filesystem::path& list_fil
 
 }  // namespace
 
-DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale) {
+DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale,
+                                  std::size_t max_frames) {
     DepthSequence s;
-    const auto list = tum::parse_list(read_file(folder / "depth.txt"), (folder / "depth.txt").string());
+    auto list = tum::parse_list(read_file(folder / "depth.txt"), (folder / "depth.txt").string());
+    if (max_frames > 0 && list.size() > max_frames) list.resize(max_frames);
     for (const auto& e : list) {
         cv::Mat depth = read_depth_metres(folder / e.path, depth_scale);
         require_camera_size(folder / e.path, depth, camera);

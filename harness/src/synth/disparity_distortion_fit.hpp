@@ -35,10 +35,11 @@ struct DepthSequence {
     metrics::Trajectory reference;
 };
 
-// Reads depth.txt, every depth image it lists (`depth_scale` units per metre) and groundtruth.txt.
-// Throws std::runtime_error naming the file (and line) that is missing, malformed, not a 16-bit
-// depth image or not the camera's size.
-DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale);
+// Reads depth.txt, every depth image it lists (or the first `max_frames`; 0: all; `depth_scale` units
+// per metre) and groundtruth.txt. Throws std::runtime_error naming the file (and line) that is missing,
+// malformed, not a 16-bit depth image or not the camera's size.
+DepthSequence read_depth_sequence(const std::filesystem::path& folder, const PinholeCamera& camera, double depth_scale,
+                                  std::size_t max_frames = 0);
 
 using DisparityOffset = std::array<double, 3>;  // a, b, c in pixels
 

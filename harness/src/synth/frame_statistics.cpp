@@ -5,6 +5,7 @@
 #include "synth/camera_clock.hpp"
 #include "synth/depth_geometry.hpp"
 #include "synth/depth_noise_persistence.hpp"
+#include "synth/disparity_pattern.hpp"
 #include "synth/image_spectrum.hpp"
 #include "synth/photometric_gain.hpp"
 #include "synth/sensor_model.hpp"
@@ -541,6 +542,19 @@ FolderStatistics measure_folder(const std::filesystem::path& folder, std::size_t
     if (rays && std::filesystem::exists(folder / "groundtruth.txt")) {
         const auto reference = metrics::read_trajectory(folder / "groundtruth.txt").poses;
         measure_timing(folder, rgb, depth, pairs, reference, *rays, depth_scale, acc);
+        // The unit's fixed disparity pattern, from the first frames (all of them are held at once).
+        constexpr std::size_t kPatternFrames = 200;
+        const DisparityPattern pattern = estimate_disparity_pattern(
+            read_depth_sequence(folder, *camera, depth_scale, max_frames > 0 ? std::min(max_frames, kPatternFrames) : kPatternFrames),
+            *rays, kinect1().depth_latency_s, DistortionFitOptions{}.focal_baseline_px_m);
+        if (std::isfinite(pattern.rms_px)) {
+            acc.mean("reference.disparity_pattern_px", "fixed disparity pattern beyond the low-order field, RMS over 16-px cells, px",
+                     pattern.rms_px);
+            acc.mean("reference.disparity_pattern_halves", "fixed disparity pattern alike in the frames' two halves (correlation)",
+                     pattern.halves_correlation);
+            acc.mean("reference.disparity_pattern_64px", "fixed disparity pattern's correlation with itself 64 px away",
+                     pattern.correlation_64px);
+        }
         for (const auto& g : reference_consistency(depth_stamps, depth_paths, reference, *rays, {1, 4, 16}, max_frames, depth_scale)) {
             if (g.pairs == 0) continue;
             acc.mean(
