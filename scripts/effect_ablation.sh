@@ -11,7 +11,7 @@ set -euo pipefail
 vobench=$1 out=$2 sensors=${3:-"kinect1 kinect2"} trajectory=${4:-explore1} frames=${5:-60} algorithm=${6:-put_vo}
 seeds=${7:-1}
 effects="motion_blur optics_blur image_noise smooth_noise vignetting auto_exposure highlights rolling_shutter depth_noise
-correlated_depth_noise fixed_pattern_noise projector_shadow depth_border registration_error dark_dropout glancing_dropout far_dropout edge_dropout flying_pixels"
+correlated_depth_noise fixed_pattern_noise disparity_pattern projector_shadow depth_border registration_error dark_dropout glancing_dropout far_dropout edge_dropout flying_pixels"
 mkdir -p "$out"
 metric() {  # folder → "ATE RPE_t RPE_r"
   "$vobench" track --dataset tum --path "$1" --algorithm "$algorithm" --json 2>/dev/null |

@@ -3,13 +3,15 @@
 # distortion (disparity_distortion_fit_px, harness/src/synth/camera_catalog.cpp) is what `vobench synth
 # fit-distortion` measures on the real fr1/rpy sample (within 0.05 px), and it lowers the residual there
 # (fr1/desk, which the fit never sees, is printed beside it); and a rendering of the sample's poses
-# through the camera reads back the same field (a within 0.1 px, b within 0.05, c within 0.6: over the
-# ten offices of sim_to_real.sh a reads back −0.44…−0.36, b 1.050–1.085 and c −1.47…−0.55, mean
-# (−0.393, 1.065, −0.978) against the real (−0.389, 1.065, −0.969); office 1 reads c −1.47, the
-# farthest: 90 frames pin the row term down least, and c moves by ±0.5 from office to office;
-# generator 14). Then the joint fit (--fit-latency --fit-turn): the reference's turn about x that the
-# rendering reads back is the real sample's within 0.15° (the camera's reference_turn_deg was chosen
-# so; the ten offices read back +0.41…+0.61° against the real +0.52°, office 1 +0.52°).
+# through the camera reads back the same field (a within 0.15 px, b within 0.08, c within 0.6: over the
+# ten offices of sim_to_real.sh, generator 15, a reads back −0.68…−0.13, b 0.988–1.129 and c
+# −1.56…−0.39, mean (−0.390, 1.066, −0.960) against the real (−0.389, 1.065, −0.969); office 1 reads
+# (−0.282, 1.129, −0.456). Each office's Kinect v1 has its own fixed disparity pattern (effect
+# disparity_pattern), and the fit's weights see part of it as a field; before it, generator 14, the
+# offices spread a −0.44…−0.36, b 1.050–1.085, c −1.47…−0.55). Then the joint fit (--fit-latency
+# --fit-turn): the reference's turn about x that the rendering reads back is the real sample's within
+# 0.15° (the camera's reference_turn_deg was chosen so; the ten offices read back +0.14…+1.12°, mean
+# +0.60°, against the real +0.52°, office 1 +0.44°).
 set -euo pipefail
 vobench=$1 src=$2 real=$3 work=$4
 seq=$real/rgbd_dataset_freiburg1_rpy
@@ -24,7 +26,7 @@ rm -rf "$work"
 "$vobench" synth --sensor kinect1 --camera tum-fr1 --trajectory "$seq/groundtruth.txt" --trajectory-format tum --stamps "$seq" \
   --layout tum --seed 1 --out "$work/rgbd_dataset_freiburg1_rpy"
 "$vobench" synth fit-distortion "$work/rgbd_dataset_freiburg1_rpy" --camera tum-fr1 --expect="$coefficients" \
-  --tolerance 0.1,0.05,0.6
+  --tolerance 0.15,0.08,0.6
 # The x component of the joint fit's reference turn, in degrees.
 turn_x() {
   "$vobench" synth fit-distortion "$1" --camera tum-fr1 --fit-latency --fit-turn |

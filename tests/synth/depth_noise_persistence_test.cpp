@@ -101,16 +101,16 @@ TEST_CASE("Kinect v1's fixed_pattern_noise repeats half a pixel's disparity erro
     REQUIRE(k1.disparity_fixed_share == 0.5);
     REQUIRE(parse_effects("").fixed_pattern_noise);
     const double fb = k1.ir_focal_px * k1.baseline_m;
-    // A still camera: frames 0 and 1 draw their own noise; the smooth part is left out to see the
-    // per-pixel part alone.
+    // A still camera: frames 0 and 1 draw their own noise; the smooth part and the unit's fixed pattern
+    // (which repeats whole, disparity_pattern_test.cpp) are left out to see the per-pixel part alone.
     auto errors = [&](double wall, uint64_t frame, const char* effects) {
         TestRig rig(wall);
         SensorModel sensor = kinect1();
         sensor.effects = parse_effects(effects);
         return disparity_errors(Renderer(rig.scene, sensor, 7).render(frame, rig.pose, rig.pose, 0.1, false).depth_native, wall, fb);
     };
-    const char* with = "-correlated_depth_noise";
-    const char* without = "-correlated_depth_noise,-fixed_pattern_noise";
+    const char* with = "-correlated_depth_noise,-disparity_pattern";
+    const char* without = "-correlated_depth_noise,-fixed_pattern_noise,-disparity_pattern";
     const double repeated = correlation(errors(2.0, 0, with), errors(2.0, 1, with));
     const double anew = correlation(errors(2.0, 0, without), errors(2.0, 1, without));
     // The wall moved from 2 m to 1.2 m: its disparity from 21.8 to 36.3 px, past the 8-px drift.

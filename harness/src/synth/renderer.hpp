@@ -32,7 +32,8 @@ enum RenderSalt : uint64_t {
     kEdgeDropout,
     kCorrelatedDisparity,
     kSmoothColorNoise,
-    kFixedDisparity
+    kFixedDisparity,
+    kDisparityPattern
 };
 
 struct RenderedFrame {

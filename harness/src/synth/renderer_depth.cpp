@@ -175,6 +175,28 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
         return a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
     };
+    // The unit's fixed pattern beyond that field: the same field in every frame (frame index 0), another
+    // for each seed, less its own best a·r² + b·x + c·y + constant — that part is the field above, which
+    // the camera brings measured (a rendering reads it back, tests/scripts/depth_distortion_fit.sh).
+    const double pattern_sigma = fx.disparity_pattern ? sensor_.disparity_pattern_sigma_px : 0.0;
+    std::optional<SmoothField> pattern;
+    Eigen::Vector4d pattern_low_order = Eigen::Vector4d::Zero();
+    const auto low_order_basis = [&](int u, int v) {
+        const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
+        return Eigen::Vector4d(x * x + y * y, x, y, 1.0);
+    };
+    if (pattern_sigma > 0) {
+        pattern.emplace(W, H, std::max(1.0, sensor_.disparity_pattern_length_px * px), hash(seed_, kDisparityPattern, 0));
+        Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+        Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+        for (int v = 0; v < H; v += 4)
+            for (int u = 0; u < W; u += 4) {
+                const Eigen::Vector4d b = low_order_basis(u, v);
+                normal += b * b.transpose();
+                rhs += b * pattern->at(u, v);
+            }
+        pattern_low_order = normal.ldlt().solve(rhs);
+    }
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     cv::Mat clean = cv::Mat::zeros(H, W, CV_64FC1);  // the disparity before noise, where a pixel is measured
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
@@ -184,6 +206,12 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
         bool found[RayIndex::kPacket];
+        std::vector<double> pattern_row;
+        if (pattern) {
+            pattern_row.resize(static_cast<std::size_t>(W));
+            pattern->row(v, pattern_row.data());
+            for (int u = 0; u < W; ++u) pattern_row[static_cast<std::size_t>(u)] -= low_order_basis(u, v).dot(pattern_low_order);
+        }
         for (int u = 0; u < W; ++u) {
             const int lane = u % RayIndex::kPacket;
             if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
@@ -202,7 +230,8 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                 shadowed.at<uint8_t>(v, u) = 255;
                 continue;
             }
-            const double offset = distortion ? disparity_offset(u, v) : 0.0;
+            const double offset =
+                (distortion ? disparity_offset(u, v) : 0.0) + (pattern ? pattern_sigma * pattern_row[static_cast<std::size_t>(u)] : 0.0);
             if (!fx.depth_noise && offset == 0) {
                 out.depth_native.at<float>(v, u) = static_cast<float>(z);
                 continue;

@@ -66,6 +66,15 @@ SensorModel kinect1() {
     // 0.08–0.09 at four frames). Only those two drifts were tried.
     s.disparity_fixed_share = 0.5;
     s.disparity_fixed_length_px = 8.0;
+    // disparity_pattern: real fr1/rpy's fixed disparity pattern, less its best low-order field
+    // (`synth stats --camera tum-fr1`, "fixed disparity pattern", disparity_pattern.hpp), reads 0.121 px
+    // RMS over 16-px cells, 0.82 alike in the sequence's two halves, correlated 0.56 with itself 64 px
+    // away; a field of 0.15 px on a 100-px lattice reads 0.077–0.154 px (median 0.099), 0.82–0.96 and
+    // 0.41–0.65 over the ten offices of the sim-to-real check (at 64 px a 120-px lattice read 0.64–0.79 on
+    // offices 1 and 2, an 80-px one 0.38–0.40 on office 1, along and across the rows; docs/synthetic-sensors.md, "The unit's disparity
+    // pattern").
+    s.disparity_pattern_sigma_px = 0.15;
+    s.disparity_pattern_length_px = 100.0;
     // correlated_depth_noise: the σ that brings the one-frame depth residual of the rendered fr1/rpy
     // poses to the real one's in every range band (`synth stats --camera tum-fr1`), with the white σ
     // above kept: 0.06 px with independent draws (0–1 / 1–2 / 2–3 / 3+ m asked for 0.059 / 0.054 /
@@ -169,6 +178,7 @@ const std::vector<std::pair<std::string, EffectMember>>& effect_table() {
                                                                             {"depth_noise", &Effects::depth_noise},
                                                                             {"correlated_depth_noise", &Effects::correlated_depth_noise},
                                                                             {"fixed_pattern_noise", &Effects::fixed_pattern_noise},
+                                                                            {"disparity_pattern", &Effects::disparity_pattern},
                                                                             {"projector_shadow", &Effects::projector_shadow},
                                                                             {"depth_border", &Effects::depth_border},
                                                                             {"dark_dropout", &Effects::dark_dropout},

@@ -43,6 +43,7 @@ struct Effects {
     bool depth_noise = true;             // the sensor's axial and lateral noise (and Kinect v1's quantisation)
     bool correlated_depth_noise = true;  // Kinect v1: disparity errors that are smooth across the image
     bool fixed_pattern_noise = true;     // Kinect v1: part of a pixel's disparity error repeats from frame to frame
+    bool disparity_pattern = true;       // Kinect v1: the unit's fixed disparity error, smooth over the image
     bool projector_shadow = true;        // Kinect v1: no depth where the projector's pattern cannot reach
     bool depth_border = true;            // Kinect v1: the registered depth image's unmeasured border
     bool dark_dropout = true;            // lost returns on dark, glossy and glass surfaces
@@ -105,6 +106,13 @@ struct SensorModel {
     // (Herrera et al. 2012 model such a pattern; Teichman et al. 2013 show it differs from unit to
     // unit). Zero unless the camera (`--camera`) brings a measured one.
     std::array<double, 3> disparity_distortion_px{};
+    // Effect disparity_pattern: beyond that low-order field, every Kinect v1 unit adds a fixed disparity
+    // error that varies over the image in blobs of about a hundred pixels (Smisek et al. 2011 and
+    // Herrera et al. 2012 show such residual patterns; disparity_pattern.hpp measures it): a smooth
+    // random field of this σ and lattice spacing (pixels of a 640-wide image), the same in every frame
+    // of a rendering and drawn anew for each seed (another unit). 0: none.
+    double disparity_pattern_sigma_px = 0.0;
+    double disparity_pattern_length_px = 100.0;
     Eigen::Vector3d projector_in_color{-0.05, 0.0, 0.0};
     // Kinect v1: the correlation window that straddles an occluder's edge still matches the occluder's
     // pattern, so its depth runs on this far (pixels of a 640-wide image) into the projector's shadow

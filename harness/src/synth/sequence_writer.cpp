@@ -384,6 +384,11 @@ SynthReport synthesize(const SynthOptions& o, const std::function<void(uint64_t,
         {"depth_units_per_metre", putk2 ? 1000 : 5000},
         {"exposure_s", sensor.exposure_s},
         {"disparity_distortion_px", sensor.disparity_distortion_px},
+        {"disparity_pattern_px",  // Kinect v1's fixed pattern beyond that field (effect disparity_pattern); none for ToF
+         sensor.principle == DepthPrinciple::StructuredLight
+             ? nlohmann::json{{"sigma", sensor.effects.disparity_pattern ? sensor.disparity_pattern_sigma_px : 0.0},
+                              {"lattice", sensor.disparity_pattern_length_px}}
+             : nlohmann::json(nullptr)},
         {"shadow_fill_px", sensor.shadow_fill_px},
         {"disparity_noise_px",  // Kinect v1's disparity error: per pixel (over its matching window, part of it repeating from frame to
                                 // frame) and its smooth part; none for ToF

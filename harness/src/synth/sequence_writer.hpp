@@ -57,7 +57,10 @@ namespace vobench::synth {
 // 14: half the variance of Kinect v1's per-pixel disparity draw repeats at a pixel from frame to frame
 //    while it sees about the same disparity (effect fixed_pattern_noise), measured on the real fr1
 //    frames' depth-noise correlation with the same pixel in later frames. Kinect v2 renders as in 13.
-constexpr int kGeneratorVersion = 14;
+// 15: every Kinect v1 unit's fixed disparity pattern beyond the low-order field (effect
+//    disparity_pattern, a smooth field over ~100 px, drawn for each seed), measured on the real fr1/rpy
+//    depth's fixed pattern (disparity_pattern.hpp). Kinect v2 renders as in 14.
+constexpr int kGeneratorVersion = 15;
 
 struct SynthOptions {
     std::string sensor = "kinect1";
