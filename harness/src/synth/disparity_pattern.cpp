@@ -110,10 +110,7 @@ Eigen::MatrixXd solve_cells(const Normal& n, const Lattice& lattice) {
 void take_off_low_order(Eigen::MatrixXd& cells, const Lattice& lattice, const PinholeCamera& camera) {
     std::vector<Eigen::Vector4d> rows;
     std::vector<double> values;
-    const auto basis = [&](int r, int c) {
-        const double x = ((c + 0.5) * lattice.cell - camera.cx) / camera.fx, y = ((r + 0.5) * lattice.cell - camera.cy) / camera.fy;
-        return Eigen::Vector4d(x * x + y * y, x, y, 1.0);
-    };
+    const auto basis = [&](int r, int c) { return disparity_field_terms(camera, (c + 0.5) * lattice.cell, (r + 0.5) * lattice.cell); };
     for (int r = 0; r < cells.rows(); ++r)
         for (int c = 0; c < cells.cols(); ++c)
             if (std::isfinite(cells(r, c))) {

@@ -172,8 +172,8 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     const auto& a = sensor_.disparity_distortion_px;
     const bool distortion = fx.depth_distortion && (a[0] != 0 || a[1] != 0 || a[2] != 0);
     const auto disparity_offset = [&](int u, int v) {
-        const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
-        return a[0] * (x * x + y * y) + a[1] * x + a[2] * y;
+        const Eigen::Vector4d t = disparity_field_terms(sensor_.depth, u, v);
+        return a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
     };
     // The unit's fixed pattern beyond that field: the same field in every frame (frame index 0), another
     // for each seed, less its own best a·r² + b·x + c·y + constant — that part is the field above, which
@@ -181,17 +181,13 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
     const double pattern_sigma = fx.disparity_pattern ? sensor_.disparity_pattern_sigma_px : 0.0;
     std::optional<SmoothField> pattern;
     Eigen::Vector4d pattern_low_order = Eigen::Vector4d::Zero();
-    const auto low_order_basis = [&](int u, int v) {
-        const double x = (u - sensor_.depth.cx) / sensor_.depth.fx, y = (v - sensor_.depth.cy) / sensor_.depth.fy;
-        return Eigen::Vector4d(x * x + y * y, x, y, 1.0);
-    };
     if (pattern_sigma > 0) {
         pattern.emplace(W, H, std::max(1.0, sensor_.disparity_pattern_length_px * px), hash(seed_, kDisparityPattern, 0));
         Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
         Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
         for (int v = 0; v < H; v += 4)
             for (int u = 0; u < W; u += 4) {
-                const Eigen::Vector4d b = low_order_basis(u, v);
+                const Eigen::Vector4d b = disparity_field_terms(sensor_.depth, u, v);
                 normal += b * b.transpose();
                 rhs += b * pattern->at(u, v);
             }
@@ -210,7 +206,8 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         if (pattern) {
             pattern_row.resize(static_cast<std::size_t>(W));
             pattern->row(v, pattern_row.data());
-            for (int u = 0; u < W; ++u) pattern_row[static_cast<std::size_t>(u)] -= low_order_basis(u, v).dot(pattern_low_order);
+            for (int u = 0; u < W; ++u)
+                pattern_row[static_cast<std::size_t>(u)] -= disparity_field_terms(sensor_.depth, u, v).dot(pattern_low_order);
         }
         for (int u = 0; u < W; ++u) {
             const int lane = u % RayIndex::kPacket;

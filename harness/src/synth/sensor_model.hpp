@@ -20,6 +20,14 @@ struct PinholeCamera {
     std::array<double, 8> distortion{};  // OpenCV rational model: k1 k2 p1 p2 k3 k4 k5 k6
 };
 
+// The terms of a low-order disparity field at pixel (u, v) of `camera`: r², x, y and 1, for the pixel's
+// pinhole-normalised x = (u − cx) / fx, y = (v − cy) / fy (SensorModel::disparity_distortion_px weighs the
+// first three; fits of such a field add the constant).
+inline Eigen::Vector4d disparity_field_terms(const PinholeCamera& camera, double u, double v) {
+    const double x = (u - camera.cx) / camera.fx, y = (v - camera.cy) / camera.fy;
+    return {x * x + y * y, x, y, 1.0};
+}
+
 enum class DepthPrinciple { StructuredLight, TimeOfFlight };
 
 // Every effect of the sensor models, each one switchable (`vobench synth --effects`), so that what each
