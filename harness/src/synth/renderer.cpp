@@ -100,6 +100,8 @@ Renderer::Renderer(const Scene& scene, const SensorModel& sensor, uint64_t seed)
     if (sensor.principle == DepthPrinciple::TimeOfFlight)
         registration_.emplace(intrinsics_of(sensor.depth), intrinsics_of(sensor.color), sensor.depth_in_color,
                               cv::Size(sensor.depth.width, sensor.depth.height), cv::Size(sensor.color.width, sensor.color.height));
+    else if (sensor.effects.disparity_pattern && sensor.disparity_pattern_sigma_px > 0)
+        disparity_pattern_ = make_disparity_pattern(sensor, depth_rays_.width, depth_rays_.height, seed);
 }
 
 std::vector<Eigen::Isometry3d> Renderer::row_poses(const Eigen::Isometry3d& pose, const Eigen::Isometry3d& next_pose, double interval_s,

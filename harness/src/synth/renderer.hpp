@@ -94,12 +94,16 @@ private:
     bool return_lost(const DepthStreams& random, uint64_t pixel, const DepthRay& ray) const;
     void render_depth_structured_light(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
     void render_depth_time_of_flight(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const;
+    // Kinect v1's fixed disparity pattern (effect disparity_pattern) on the depth grid, px: the same in
+    // every frame, so it is made once.
+    static cv::Mat make_disparity_pattern(const SensorModel& sensor, int width, int height, uint64_t seed);
 
     const Scene& scene_;
     SensorModel sensor_;
     uint64_t seed_;
     RayMap color_rays_, depth_rays_;
     std::optional<rgbd::DepthRegistration> registration_;  // time of flight: depth to colour, set up once
+    cv::Mat disparity_pattern_;                            // structured light: CV_64F, px; empty: none
 };
 
 // The registration library's view of a camera.

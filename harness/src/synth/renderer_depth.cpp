@@ -147,6 +147,31 @@ bool Renderer::return_lost(const DepthStreams& random, uint64_t pixel, const Dep
     return std::clamp(field, 0.0, 1.0) + flicker < p;
 }
 
+cv::Mat Renderer::make_disparity_pattern(const SensorModel& sensor, int W, int H, uint64_t seed) {
+    // A smooth field of the unit (another for each seed) less its own best a·r² + b·x + c·y + constant —
+    // that part is the camera's low-order field (disparity_distortion_px), which it brings measured and
+    // a rendering reads back (tests/scripts/depth_distortion_fit.sh).
+    const SmoothField field(W, H, std::max(1.0, sensor.disparity_pattern_length_px * (W / 640.0)), hash(seed, kDisparityPattern, 0));
+    Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
+    for (int v = 0; v < H; v += 4)
+        for (int u = 0; u < W; u += 4) {
+            const Eigen::Vector4d b = disparity_field_terms(sensor.depth, u, v);
+            normal += b * b.transpose();
+            rhs += b * field.at(u, v);
+        }
+    const Eigen::Vector4d low_order = normal.ldlt().solve(rhs);
+    cv::Mat out(H, W, CV_64FC1);
+    std::vector<double> row(static_cast<std::size_t>(W));
+    for (int v = 0; v < H; ++v) {
+        field.row(v, row.data());
+        for (int u = 0; u < W; ++u)
+            out.at<double>(v, u) = sensor.disparity_pattern_sigma_px *
+                                   (row[static_cast<std::size_t>(u)] - disparity_field_terms(sensor.depth, u, v).dot(low_order));
+    }
+    return out;
+}
+
 void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame& f, RenderedFrame& out) const {
     // Kinect v1: depth on a grid registered to the colour camera, from disparity against the
     // projector pattern (Khoshelham & Elberink 2012): z = f·b/d, d quantised to 1/8 px with noise.
@@ -175,24 +200,6 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const Eigen::Vector4d t = disparity_field_terms(sensor_.depth, u, v);
         return a[0] * t[0] + a[1] * t[1] + a[2] * t[2];
     };
-    // The unit's fixed pattern beyond that field: the same field in every frame (frame index 0), another
-    // for each seed, less its own best a·r² + b·x + c·y + constant — that part is the field above, which
-    // the camera brings measured (a rendering reads it back, tests/scripts/depth_distortion_fit.sh).
-    const double pattern_sigma = fx.disparity_pattern ? sensor_.disparity_pattern_sigma_px : 0.0;
-    std::optional<SmoothField> pattern;
-    Eigen::Vector4d pattern_low_order = Eigen::Vector4d::Zero();
-    if (pattern_sigma > 0) {
-        pattern.emplace(W, H, std::max(1.0, sensor_.disparity_pattern_length_px * px), hash(seed_, kDisparityPattern, 0));
-        Eigen::Matrix4d normal = Eigen::Matrix4d::Zero();
-        Eigen::Vector4d rhs = Eigen::Vector4d::Zero();
-        for (int v = 0; v < H; v += 4)
-            for (int u = 0; u < W; u += 4) {
-                const Eigen::Vector4d b = disparity_field_terms(sensor_.depth, u, v);
-                normal += b * b.transpose();
-                rhs += b * pattern->at(u, v);
-            }
-        pattern_low_order = normal.ldlt().solve(rhs);
-    }
     cv::Mat truth = cv::Mat::zeros(H, W, CV_32FC1);
     cv::Mat clean = cv::Mat::zeros(H, W, CV_64FC1);  // the disparity before noise, where a pixel is measured
     out.depth_native = cv::Mat::zeros(H, W, CV_32FC1);
@@ -202,13 +209,6 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
         const Eigen::Isometry3d& depth_pose = rows[static_cast<std::size_t>(v)];
         DepthRay rays[RayIndex::kPacket];
         bool found[RayIndex::kPacket];
-        std::vector<double> pattern_row;
-        if (pattern) {
-            pattern_row.resize(static_cast<std::size_t>(W));
-            pattern->row(v, pattern_row.data());
-            for (int u = 0; u < W; ++u)
-                pattern_row[static_cast<std::size_t>(u)] -= disparity_field_terms(sensor_.depth, u, v).dot(pattern_low_order);
-        }
         for (int u = 0; u < W; ++u) {
             const int lane = u % RayIndex::kPacket;
             if (lane == 0) cast_depth_rays(random, depth_pose, u, std::min(RayIndex::kPacket, W - u), v, rays, found);
@@ -228,7 +228,7 @@ void Renderer::render_depth_structured_light(uint64_t frame, const PlannedFrame&
                 continue;
             }
             const double offset =
-                (distortion ? disparity_offset(u, v) : 0.0) + (pattern ? pattern_sigma * pattern_row[static_cast<std::size_t>(u)] : 0.0);
+                (distortion ? disparity_offset(u, v) : 0.0) + (disparity_pattern_.empty() ? 0.0 : disparity_pattern_.at<double>(v, u));
             if (!fx.depth_noise && offset == 0) {
                 out.depth_native.at<float>(v, u) = static_cast<float>(z);
                 continue;
